@@ -1,0 +1,254 @@
+#pragma once
+/// \file
+/// Nodal assembly. The sparsity pattern of the Newton matrix is built once per
+/// topology from the connectivity and the blocks each passport declares, with a
+/// scatter map from every local Jacobian entry to its slot in the global sparse
+/// array: numeric assembly does no searching and never allocates.
+///
+/// Per Newton iteration J = cu * dF/du + cv * dF/dv + ca * dF/da, with the
+/// integrator's coefficients. Blocks an element type does not declare are never
+/// computed nor added: a scene without viscous elements never touches a C block.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <span>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "pradis/core/element.hpp"
+#include "pradis/linalg/sparsity.hpp"
+#include "pradis/model/model.hpp"
+
+namespace pradis {
+
+/// Coefficients with which the integrator combines the local Jacobian blocks.
+struct jacobian_coefficients {
+  double cu = 0;  ///< factor of K = dF/du
+  double cv = 0;  ///< factor of C = dF/dv
+  double ca = 0;  ///< factor of M = dF/da
+};
+
+/// Global potentials of all DOFs (ground and prescribed DOFs included).
+struct global_state {
+  Eigen::VectorXd u, v, a;
+  void resize(int n) {
+    u.setZero(n);
+    v.setZero(n);
+    a.setZero(n);
+  }
+};
+
+/// Facts the assembler hands to every element call (time, step number, ...).
+struct call_info {
+  double time = 0;
+  double step = 0;
+  long nstep = 0;
+  int niter = 0;
+  bool want_jacobian = true;
+  diagnostics* log = nullptr;
+};
+
+template <class Model>
+class assembler;
+
+/// Assembler of a model<Es...>.
+template <class... Es>
+class assembler<model<Es...>> {
+ public:
+  using model_type = model<Es...>;
+
+  /// Whether any element type of the model declares a velocity block.
+  static constexpr bool any_c = (element_traits<Es>::has_c || ...);
+  /// Whether any element type of the model declares an acceleration block.
+  static constexpr bool any_m = (element_traits<Es>::has_m || ...);
+  /// Whether any element type of the model declares a displacement block.
+  static constexpr bool any_k = (element_traits<Es>::has_k || ...);
+
+  /// Builds the equation numbering, the pattern and the scatter maps.
+  /// `prescribed[d]` is true for DOFs whose motion is known (ground, sources);
+  /// they get no equation.
+  void build(const model_type& m, const std::vector<char>& prescribed) {
+    const int nd = m.dof_count();
+    eq_of_dof_.assign(static_cast<std::size_t>(nd), -1);
+    dof_of_eq_.clear();
+    for (int d = 0; d < nd; ++d)
+      if (!prescribed[static_cast<std::size_t>(d)]) {
+        eq_of_dof_[static_cast<std::size_t>(d)] = static_cast<int>(dof_of_eq_.size());
+        dof_of_eq_.push_back(d);
+      }
+    const int ne = static_cast<int>(dof_of_eq_.size());
+    std::vector<std::pair<int, int>> entries;
+    m.for_each_instances([&](const auto& vec) {
+      for (const auto& in : vec)
+        for (int r : in.dofs)
+          for (int c : in.dofs) {
+            const int er = eq_of_dof_[static_cast<std::size_t>(r)], ec = eq_of_dof_[static_cast<std::size_t>(c)];
+            if (er >= 0 && ec >= 0) entries.emplace_back(er, ec);
+          }
+    });
+    pattern_ = linalg::sparsity_pattern::from_entries(ne, entries);
+    // Scatter maps: slot of every local entry (r, c), or -1 where row or column has no equation.
+    std::apply(
+        [&](auto&... maps) {
+          (
+              [&](auto& map) {
+                using E = typename std::remove_cvref_t<decltype(map)>::element_type;
+                constexpr int n = element_traits<E>::n;
+                const auto& vec = m.template instances<E>();
+                map.slots.assign(vec.size() * static_cast<std::size_t>(n * n), -1);
+                for (std::size_t i = 0; i < vec.size(); ++i)
+                  for (int r = 0; r < n; ++r)
+                    for (int c = 0; c < n; ++c) {
+                      const int er = eq_of_dof_[static_cast<std::size_t>(vec[i].dofs[static_cast<std::size_t>(r)])];
+                      const int ec = eq_of_dof_[static_cast<std::size_t>(vec[i].dofs[static_cast<std::size_t>(c)])];
+                      if (er >= 0 && ec >= 0)
+                        map.slots[i * static_cast<std::size_t>(n * n) + static_cast<std::size_t>(r * n + c)] =
+                            pattern_.find(er, ec);
+                    }
+              }(maps),
+              ...);
+        },
+        maps_);
+    values_.assign(static_cast<std::size_t>(pattern_.nnz()), 0.0);
+    residual_.setZero(nd);
+    abs_sum_.setZero(nd);
+    built_version_ = m.topology_version();
+  }
+
+  /// Whether build() was run for the model's current topology.
+  bool built_for(const model_type& m) const noexcept { return built_version_ == m.topology_version(); }
+
+  /// Evaluates every element at the global state `s`: sums the flows into the
+  /// residual (all DOFs) and |flows| into abs_sum (for DRLTI), and, if
+  /// info.want_jacobian, assembles J = cu K + cv C + ca M into values().
+  /// Never allocates. Element errors propagate as pradis::error; a non-finite
+  /// flow or Jacobian entry raises error_code::non_finite naming the instance.
+  void evaluate(model_type& m, const global_state& s, const jacobian_coefficients& c, const call_info& info) {
+    residual_.setZero();
+    abs_sum_.setZero();
+    if (info.want_jacobian) std::fill(values_.begin(), values_.end(), 0.0);
+    element_context ctx;
+    ctx.set_diagnostics(info.log);
+    ctx.time = info.time;
+    ctx.step = info.step;
+    ctx.nstep = info.nstep;
+    ctx.niter = info.niter;
+    std::size_t ti = 0;
+    (evaluate_type<Es>(m, s, c, info, ctx, std::get<index_of<Es, Es...>()>(maps_), ti++), ...);
+    recommended_step_ = ctx.recommended_step;
+  }
+
+  /// Evaluates one element instance alone (used for reactions and by tools).
+  template <class E>
+  void evaluate_instance(model_type& m, int index, const global_state& s, double t, local_output<E>& out,
+                         diagnostics* log = nullptr) {
+    auto& in = m.template instances<E>()[static_cast<std::size_t>(index)];
+    local_input<E> li;
+    gather(in, s, li);
+    li.t = t;
+    element_context ctx(E::passport.name, in.name, log);
+    bind(m, in, ctx);
+    ctx.time = t;
+    out.clear();
+    in.element.evaluate(li, out, ctx);
+  }
+
+  /// Number of equations (free DOFs).
+  int equations() const noexcept { return static_cast<int>(dof_of_eq_.size()); }
+  /// Equation of a DOF, or -1 for ground/prescribed DOFs.
+  int equation_of(int dof) const noexcept { return eq_of_dof_[static_cast<std::size_t>(dof)]; }
+  /// DOF of an equation.
+  int dof_of(int eq) const noexcept { return dof_of_eq_[static_cast<std::size_t>(eq)]; }
+  /// Sparsity pattern of the Newton matrix (equations only).
+  const linalg::sparsity_pattern& pattern() const noexcept { return pattern_; }
+  /// Assembled Newton-matrix values in the pattern's CSR order.
+  std::span<const double> values() const noexcept { return values_; }
+  /// Sum of flows per DOF (all DOFs).
+  const Eigen::VectorXd& residual() const noexcept { return residual_; }
+  /// Sum of |flows| per DOF (all DOFs).
+  const Eigen::VectorXd& abs_sum() const noexcept { return abs_sum_; }
+  /// Smallest step recommended by an element in the last evaluate() (STEPMD), or infinity.
+  double recommended_step() const noexcept { return recommended_step_; }
+
+  /// Binds an instance's work and state vectors into a context.
+  template <class E>
+  static void bind(model_type& m, element_instance<E>& in, element_context& ctx) {
+    ctx.work = std::span<double>(m.work_pool().data() + in.work_offset, in.work_size);
+    ctx.old_state = std::span<const double>(m.old_state_pool().data() + in.state_offset, in.state_size);
+    ctx.new_state = std::span<double>(m.new_state_pool().data() + in.state_offset, in.state_size);
+    ctx.npar = in.npar;
+  }
+  /// Copies the global potentials of an instance's DOFs into a local input.
+  template <class E>
+  static void gather(const element_instance<E>& in, const global_state& s, local_input<E>& li) {
+    for (int k = 0; k < element_traits<E>::n; ++k) {
+      const auto d = static_cast<Eigen::Index>(in.dofs[static_cast<std::size_t>(k)]);
+      li.u(k) = s.u(d);
+      li.v(k) = s.v(d);
+      li.a(k) = s.a(d);
+    }
+  }
+
+ private:
+  template <class E>
+  struct scatter_map {
+    using element_type = E;
+    std::vector<int> slots;
+  };
+
+  template <class E>
+  void evaluate_type(model_type& m, const global_state& s, const jacobian_coefficients& c, const call_info& info,
+                     element_context& ctx, const scatter_map<E>& map, std::size_t) {
+    using tr = element_traits<E>;
+    constexpr int n = tr::n;
+    auto& vec = m.template instances<E>();
+    local_input<E> li;
+    local_output<E> out;
+    li.t = info.time;
+    out.want_jacobian = info.want_jacobian;
+    for (std::size_t i = 0; i < vec.size(); ++i) {
+      auto& in = vec[i];
+      gather(in, s, li);
+      ctx.set_identity(E::passport.name, in.name);
+      bind(m, in, ctx);
+      out.clear();
+      in.element.evaluate(li, out, ctx);
+      if (!out.f.allFinite()) ctx.fail(error_code::non_finite, "a flow is NaN or infinite");
+      for (int k = 0; k < n; ++k) {
+        const auto d = static_cast<Eigen::Index>(in.dofs[static_cast<std::size_t>(k)]);
+        residual_(d) += out.f(k);
+        abs_sum_(d) += std::abs(out.f(k));
+      }
+      if (!info.want_jacobian) continue;
+      if constexpr (tr::has_k)
+        if (!out.K.allFinite()) ctx.fail(error_code::non_finite, "a Jacobian entry dF/du is NaN or infinite");
+      if constexpr (tr::has_c)
+        if (!out.C.allFinite()) ctx.fail(error_code::non_finite, "a Jacobian entry dF/dv is NaN or infinite");
+      if constexpr (tr::has_m)
+        if (!out.M.allFinite()) ctx.fail(error_code::non_finite, "a Jacobian entry dF/da is NaN or infinite");
+      const int* slot = map.slots.data() + i * static_cast<std::size_t>(n * n);
+      for (int r = 0; r < n; ++r)
+        for (int q = 0; q < n; ++q) {
+          const int sl = slot[r * n + q];
+          if (sl < 0) continue;
+          double x = 0;
+          if constexpr (tr::has_k) x += c.cu * out.K(r, q);
+          if constexpr (tr::has_c) x += c.cv * out.C(r, q);
+          if constexpr (tr::has_m) x += c.ca * out.M(r, q);
+          values_[static_cast<std::size_t>(sl)] += x;
+        }
+    }
+  }
+
+  std::vector<int> eq_of_dof_, dof_of_eq_;
+  linalg::sparsity_pattern pattern_;
+  std::tuple<scatter_map<Es>...> maps_;
+  std::vector<double> values_;
+  Eigen::VectorXd residual_, abs_sum_;
+  double recommended_step_ = 0;
+  std::size_t built_version_ = static_cast<std::size_t>(-1);
+};
+
+}  // namespace pradis

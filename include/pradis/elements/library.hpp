@@ -1,0 +1,35 @@
+#pragma once
+/// \file
+/// The built-in element library as a compile-time list. `library_elements` is the
+/// type list of every element type; `library_model` is a model that can hold all
+/// of them (what the model language and the `pradis` command use). A scene that
+/// needs only some types lists just those in its own pradis::model<...>.
+
+#include "pradis/core/type_list.hpp"
+#include "pradis/elements/mech1d/forces.hpp"
+#include "pradis/elements/mech1d/initial_conditions.hpp"
+#include "pradis/elements/mech1d/linear_damper.hpp"
+#include "pradis/elements/mech1d/linear_spring.hpp"
+#include "pradis/elements/mech1d/point_mass.hpp"
+#include "pradis/elements/mech1d/sources.hpp"
+#include "pradis/elements/planar/eccentric_mass.hpp"
+#include "pradis/elements/planar/planar_inertia.hpp"
+#include "pradis/elements/planar/planar_link.hpp"
+#include "pradis/model/model.hpp"
+
+namespace pradis::elements {
+
+/// 1D mechanics.
+using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, constant_force, sine_force,
+                                  displacement_source, velocity_source, initial_displacement, initial_velocity>;
+/// Planar mechanics.
+using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass>;
+/// Every element type of the built-in library.
+using library_elements = concat_t<mech1d_elements, planar_elements>;
+
+}  // namespace pradis::elements
+
+namespace pradis {
+/// A model that can hold every element type of the built-in library.
+using library_model = model_of<elements::library_elements>;
+}  // namespace pradis

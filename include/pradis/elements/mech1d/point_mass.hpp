@@ -1,0 +1,37 @@
+#pragma once
+/// \file
+/// MASS: point mass on one translational DOF (or a rotary inertia on an angle DOF).
+
+#include <span>
+#include <string>
+
+#include "pradis/core/element.hpp"
+
+namespace pradis::elements {
+
+/// MASS: inertia m on one DOF; flow m a (ADR=3: pure inertia, standing with one "foot" on the ground).
+struct point_mass {
+  static constexpr pradis::passport passport{.name = "MASS", .ext = 1, .par = 1, .adr = 3};
+  static constexpr element_help help{.title = "point mass on one DOF",
+                                     .name = "Point inertia element for one translational or rotational DOF",
+                                     .field = "mechanics (any domain: capacitance-like element)",
+                                     .dofs = "1 - displacement [m] (or angle [rad])",
+                                     .parameters = "1 - mass m [kg] (or moment of inertia [kg m^2]) (>= 0)",
+                                     .work = "",
+                                     .special = "code 100 if m < 0"};
+  struct parameters {
+    double m = 0;  ///< mass [kg]
+  };
+  parameters p;
+  explicit point_mass(parameters q) : p(q) {}
+  static point_mass from_parameters(std::span<const double> v) { return point_mass({v[0]}); }
+  void new_integration(element_context& ctx) const {
+    if (!(p.m >= 0)) ctx.invalid_parameter("mass m = " + std::to_string(p.m) + " must be >= 0");
+  }
+  void evaluate(const local_input<point_mass>& in, local_output<point_mass>& out, element_context&) const {
+    out.f(0) = p.m * in.a(0);
+    if (out.want_jacobian) out.M(0, 0) = p.m;
+  }
+};
+
+}  // namespace pradis::elements

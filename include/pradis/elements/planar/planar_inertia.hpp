@@ -1,0 +1,49 @@
+#pragma once
+/// \file
+/// MD: point inertia element in plane motion (translation X, Y and rotation).
+
+#include <span>
+#include <string>
+
+#include "pradis/core/element.hpp"
+
+namespace pradis::elements {
+
+/// MD: point inertia in plane motion: mass m on the X and Y DOFs, moment of
+/// inertia J about the centre of mass on the rotation DOF. Pure inertia (ADR=3):
+/// flows (m a_x, m a_y, J eps), Jacobian dF/da = diag(m, m, J).
+struct planar_inertia {
+  static constexpr pradis::passport passport{.name = "MD", .ext = 3, .par = 2, .adr = 3};
+  static constexpr element_help help{
+      .title = "point inertia in plane motion",
+      .name = "Point inertia element for plane motion (mass and moment of inertia about the centre of mass)",
+      .field = "mechanics",
+      .dofs = "1 - translation of the centre of mass along X [m]\n"
+              "2 - translation of the centre of mass along Y [m]\n"
+              "3 - rotation about Z [rad]",
+      .parameters = "1 - mass m [kg] (>= 0)\n"
+                    "2 - moment of inertia J about the centre of mass [kg m^2] (>= 0)",
+      .work = "",
+      .special = "code 100 if m < 0 or J < 0"};
+
+  struct parameters {
+    double m = 0;  ///< mass [kg]
+    double j = 0;  ///< moment of inertia [kg m^2]
+  };
+  parameters p;
+
+  explicit planar_inertia(parameters q) : p(q) {}
+  static planar_inertia from_parameters(std::span<const double> v) { return planar_inertia({v[0], v[1]}); }
+
+  void new_integration(element_context& ctx) const {
+    if (!(p.m >= 0)) ctx.invalid_parameter("mass m = " + std::to_string(p.m) + " must be >= 0");
+    if (!(p.j >= 0)) ctx.invalid_parameter("moment of inertia J = " + std::to_string(p.j) + " must be >= 0");
+  }
+
+  void evaluate(const local_input<planar_inertia>& in, local_output<planar_inertia>& out, element_context&) const {
+    out.f << p.m * in.a(0), p.m * in.a(1), p.j * in.a(2);
+    if (out.want_jacobian) out.M.diagonal() << p.m, p.m, p.j;
+  }
+};
+
+}  // namespace pradis::elements

@@ -1,0 +1,82 @@
+#pragma once
+/// \file
+/// LINKD: ideal elastic axial link for plane motion (the manual's worked example, section 3.6).
+
+#include <cmath>
+#include <span>
+#include <string>
+
+#include "pradis/core/element.hpp"
+
+namespace pradis::elements {
+
+/// LINKD: linear elastic link between two points A and B moving in a plane,
+/// working in tension and compression. Flows (forces the system applies to the
+/// link): F_A = -k (L - L0) e, F_B = -F_A, with e = (B - A) / L.
+struct planar_link {
+  static constexpr pradis::passport passport{.name = "LINKD", .ext = 4, .par = 5, .wrk = 3, .adr = 1, .ign = 23};
+  static constexpr element_help help{
+      .title = "ideal elastic axial link for plane motion",
+      .name = "Ideal elastic element for plane motion, working in tension and compression",
+      .field = "mechanics",
+      .dofs = "1 - translation of point A along X [m]\n"
+              "2 - translation of point A along Y [m]\n"
+              "3 - translation of point B along X [m]\n"
+              "4 - translation of point B along Y [m]",
+      .parameters = "1 - initial abscissa of point A [m]\n"
+                    "2 - initial ordinate of point A [m]\n"
+                    "3 - initial abscissa of point B [m]\n"
+                    "4 - initial ordinate of point B [m] (A and B must not coincide)\n"
+                    "5 - stiffness k [N/m] (>= 0)",
+      .work = "1 - initial length L0 [m]\n"
+              "2 - current length L [m]\n"
+              "3 - axial force k (L - L0) [N], positive in tension",
+      .special = "code 100 if A and B coincide initially or k < 0; code 75 if the current length becomes "
+                 "close to zero during the run (treated as a failed step; reported if it persists at SMIN)"};
+
+  /// Typed parameters, in PAR order.
+  struct parameters {
+    double xa0 = 0, ya0 = 0, xb0 = 1, yb0 = 0;  ///< initial coordinates of A and B [m]
+    double k = 0;                               ///< stiffness [N/m]
+  };
+  parameters p;
+
+  explicit planar_link(parameters q) : p(q) {}
+  static planar_link from_parameters(std::span<const double> v) { return planar_link({v[0], v[1], v[2], v[3], v[4]}); }
+
+  /// NEWINT: parameter checks and the initial length into W(1).
+  void new_integration(element_context& ctx) const {
+    const double l0 = std::hypot(p.xb0 - p.xa0, p.yb0 - p.ya0);
+    if (!(l0 > min_length)) ctx.invalid_parameter("points A and B coincide: the initial length is zero");
+    if (!(p.k >= 0)) ctx.invalid_parameter("stiffness k = " + std::to_string(p.k) + " must be >= 0");
+    ctx.work[0] = l0;
+  }
+
+  void evaluate(const local_input<planar_link>& in, local_output<planar_link>& out, element_context& ctx) const {
+    const double l0 = ctx.work[0];
+    const double dx = (p.xb0 + in.u(2)) - (p.xa0 + in.u(0));
+    const double dy = (p.yb0 + in.u(3)) - (p.ya0 + in.u(1));
+    const double l = std::hypot(dx, dy);
+    if (!(l > min_length * std::max(1.0, l0))) ctx.singular("the length of the link has become close to zero");
+    const double c = dx / l, s = dy / l, du = l - l0;
+    out.f(0) = -p.k * du * c;
+    out.f(1) = -p.k * du * s;
+    out.f(2) = -out.f(0);
+    out.f(3) = -out.f(1);
+    ctx.work[1] = l;
+    ctx.work[2] = p.k * du;
+    if (!out.want_jacobian) return;
+    // Manual section 3.6.3: dF1/dX1 = k (1 - L0/L sin^2), dF1/dX2 = k L0/L sin cos, dF2/dX2 = k (1 - L0/L cos^2).
+    const double r = l0 / l;
+    const double kxx = p.k * (1.0 - r * s * s), kxy = p.k * r * s * c, kyy = p.k * (1.0 - r * c * c);
+    out.K << kxx, kxy, -kxx, -kxy,  //
+        kxy, kyy, -kxy, -kyy,       //
+        -kxx, -kxy, kxx, kxy,       //
+        -kxy, -kyy, kxy, kyy;
+  }
+
+  /// Lengths below this (relative to L0, absolute below 1 m) count as zero.
+  static constexpr double min_length = 1e-12;
+};
+
+}  // namespace pradis::elements

@@ -1,0 +1,536 @@
+#pragma once
+/// \file
+/// The time-integration driver: zero step, NEWINT work per stage, implicit
+/// one-step integration with Newton iterations (PRADIS convergence tests),
+/// step cuts down to SMIN, element-recommended steps (STEPMD / IGNORE),
+/// output sampling at OUT and run statistics.
+///
+/// Usage:
+///     pradis::simulation sim(model, pradis::newmark{});
+///     sim.on_output([&](const auto& s) { ... s.time(), s.u(d) ... });
+///     sim.run({.end = 1.0, .smax = 1e-3});   // first stage (also runs the zero step)
+///     sim.run({.end = 1.5});                 // second stage, NEWINT again
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <span>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pradis/assembly/assembler.hpp"
+#include "pradis/core/diagnostics.hpp"
+#include "pradis/core/element.hpp"
+#include "pradis/integrators/newmark.hpp"
+#include "pradis/linalg/ordering.hpp"
+#include "pradis/linalg/sparse_lu.hpp"
+#include "pradis/model/model.hpp"
+
+namespace pradis {
+
+/// Newton options with PRADIS's names and defaults.
+struct newton_options {
+  double dabsu = 0.01;   ///< DABSU: absolute tolerance on the correction of the unknown (velocity)
+  double drltu = 1e-3;   ///< DRLTU: relative tolerance on the correction
+  double dabsi = 0.1;    ///< DABSI: absolute tolerance on the residual (sum of flows) per DOF
+  double drlti = 1e-3;   ///< DRLTI: relative tolerance on the residual, times the sum of |flows| on the DOF
+  int itr = 5;           ///< ITR: maximum Newton iterations per step
+  bool second = false;   ///< SECOND: force at least a second iteration
+};
+
+/// Options of one call of an integration program (one stage of a run).
+struct run_options {
+  double end = 1.0;          ///< END: time at which the stage stops
+  double out = 0.0;          ///< OUT: output interval (0: output after every step)
+  double smax = 0.01;        ///< SMAX: maximum (and nominal) step
+  double smin = 1e-11;       ///< SMIN: minimum step; below it the run fails
+  bool ignore = false;       ///< IGNORE: ignore steps recommended by elements (STEPMD)
+  newton_options newton{};   ///< Newton tolerances
+};
+
+/// Run statistics, cumulative over the stages of a simulation.
+struct run_statistics {
+  long steps = 0;              ///< accepted steps
+  long rejected_steps = 0;     ///< steps cut (Newton failure, singular situation)
+  long newton_iterations = 0;  ///< linear solves in Newton iterations
+  long factorizations = 0;     ///< numeric factorisations
+  long evaluations = 0;        ///< full model evaluations
+  int last_iterations = 0;     ///< Newton iterations of the last accepted step
+  double last_step = 0;        ///< size of the last accepted step
+  /// Difference (per-stage figures).
+  friend run_statistics operator-(run_statistics a, const run_statistics& b) {
+    a.steps -= b.steps;
+    a.rejected_steps -= b.rejected_steps;
+    a.newton_iterations -= b.newton_iterations;
+    a.factorizations -= b.factorizations;
+    a.evaluations -= b.evaluations;
+    return a;
+  }
+};
+
+template <class Model, Integrator Scheme = newmark, class Solver = linalg::sparse_lu<linalg::min_degree_ordering>>
+class simulation;
+
+/// Simulation of a model<Es...> with an integration scheme and a linear solver policy.
+template <class... Es, Integrator Scheme, class Solver>
+class simulation<model<Es...>, Scheme, Solver> {
+ public:
+  using model_type = model<Es...>;
+  using observer = std::function<void(const simulation&)>;
+
+  /// Binds the simulation to a model (which must outlive it).
+  explicit simulation(model_type& m, Scheme scheme = {}) : m_(m), scheme_(scheme) {}
+
+  /// The diagnostics log (SYSPRINT.TXT role); silent by default.
+  diagnostics& log() noexcept { return log_; }
+  /// Adds an observer called at t0 (after the zero step) and at every output time.
+  void on_output(observer f) { observers_.push_back(std::move(f)); }
+
+  /// Runs one stage up to opt.end. The first call performs the zero step.
+  /// Returns the statistics of this stage. Throws pradis::error on bad options
+  /// (invalid_option), model errors and run failures.
+  run_statistics run(const run_options& opt) {
+    validate(opt);
+    const run_statistics before = stats_;
+    opt_ = opt;
+    if (!started_) {
+      zero_step();
+    } else {
+      if (!(opt.end > t_)) fail_option("END = " + num(opt.end) + " must be after the current time " + num(t_));
+      if (!asm_.built_for(m_)) build();
+      new_integration();
+    }
+    const double t_start = t_;
+    long out_index = 1;
+    double next_out = opt.out > 0 ? t_start + opt.out : opt.end;
+    if (h_nominal_ <= 0 || h_nominal_ > opt.smax) h_nominal_ = opt.smax;
+    while (t_ < opt.end * (1 - 1e-14) - 1e-300) {
+      double target = std::min(next_out, opt.end);
+      double h = h_nominal_;
+      if (!opt.ignore && recommended_ < h) h = std::max(recommended_, opt.smin);
+      bool clipped = false;
+      if (t_ + h >= target - 1e-9 * h) {
+        h = target - t_;
+        clipped = true;
+      }
+      if (step(h)) {
+        if (!clipped || h >= h_nominal_) grow();
+        if (clipped || opt.out <= 0) {
+          if (opt.out > 0) {
+            ++out_index;
+            next_out = t_start + static_cast<double>(out_index) * opt.out;
+            if (std::abs(t_ - target) < 1e-12 * std::max(1.0, std::abs(target))) t_ = target;
+          }
+          notify();
+        }
+      } else {
+        ++stats_.rejected_steps;
+        h_nominal_ = h * 0.5;
+        successes_ = 0;
+        if (h_nominal_ < opt.smin) fail_at_smin(h);
+      }
+    }
+    t_ = opt.end;
+    return stats_ - before;
+  }
+
+  // ---- results --------------------------------------------------------------
+  /// Current time.
+  double time() const noexcept { return t_; }
+  /// Displacement, velocity, acceleration of a DOF at the current time.
+  double u(dof d) const { return s_.u(d.index); }
+  double v(dof d) const { return s_.v(d.index); }
+  double a(dof d) const { return s_.a(d.index); }
+  /// Global state (all DOFs).
+  const global_state& state() const noexcept { return s_; }
+  /// Sum of flows on a DOF at the last evaluation (nonzero only on prescribed DOFs: the reaction).
+  double residual(dof d) const { return asm_.residual()(d.index); }
+  /// Cumulative statistics.
+  const run_statistics& statistics() const noexcept { return stats_; }
+  /// A statistic by its output-variable name: "NSTEP" (accepted steps), "NITER"
+  /// (iterations of the last step), "STEP" (last step size), "NREJ" (rejected
+  /// steps), "NFACT" (factorisations), "NITTOT" (all Newton iterations).
+  double statistic(std::string_view key) const {
+    if (key == "NSTEP") return static_cast<double>(stats_.steps);
+    if (key == "NITER") return stats_.last_iterations;
+    if (key == "STEP") return stats_.last_step;
+    if (key == "NREJ") return static_cast<double>(stats_.rejected_steps);
+    if (key == "NFACT") return static_cast<double>(stats_.factorizations);
+    if (key == "NITTOT") return static_cast<double>(stats_.newton_iterations);
+    throw error(error_code::invalid_option, "unknown statistic '" + std::string(key) +
+                                                "' (known: NSTEP, NITER, STEP, NREJ, NFACT, NITTOT)");
+  }
+  /// The model.
+  model_type& get_model() noexcept { return m_; }
+  const model_type& get_model() const noexcept { return m_; }
+  /// The assembler (pattern, equation numbering).
+  const assembler<model_type>& get_assembler() const noexcept { return asm_; }
+  /// The linear solver.
+  const Solver& solver() const noexcept { return solver_; }
+  /// The scheme.
+  const Scheme& scheme() const noexcept { return scheme_; }
+
+ private:
+  static std::string num(double x) {
+    std::ostringstream os;
+    os.precision(10);
+    os << x;
+    return os.str();
+  }
+  [[noreturn]] void fail_option(const std::string& msg) {
+    error e(error_code::invalid_option, std::string(Scheme::name) + ": " + msg);
+    log_.write(e);
+    throw e;
+  }
+  void validate(const run_options& o) {
+    auto bad = [](double x) { return !std::isfinite(x); };
+    if (bad(o.end)) fail_option("END must be a finite number");
+    if (bad(o.smax) || !(o.smax > 0)) fail_option("SMAX = " + num(o.smax) + " must be > 0");
+    if (bad(o.smin) || !(o.smin > 0)) fail_option("SMIN = " + num(o.smin) + " must be > 0");
+    if (o.smin > o.smax) fail_option("SMIN = " + num(o.smin) + " is above SMAX = " + num(o.smax));
+    if (bad(o.out) || o.out < 0) fail_option("OUT = " + num(o.out) + " must be >= 0");
+    const auto& n = o.newton;
+    if (bad(n.dabsu) || n.dabsu < 0) fail_option("DABSU = " + num(n.dabsu) + " must be >= 0");
+    if (bad(n.drltu) || n.drltu < 0) fail_option("DRLTU = " + num(n.drltu) + " must be >= 0");
+    if (bad(n.dabsi) || n.dabsi < 0) fail_option("DABSI = " + num(n.dabsi) + " must be >= 0");
+    if (bad(n.drlti) || n.drlti < 0) fail_option("DRLTI = " + num(n.drlti) + " must be >= 0");
+    if (n.dabsu + n.drltu <= 0 || n.dabsi + n.drlti <= 0)
+      fail_option("Newton tolerances DABSU+DRLTU and DABSI+DRLTI must not both be zero");
+    if (n.itr < 1) fail_option("ITR = " + std::to_string(n.itr) + " must be >= 1");
+  }
+
+  // ---- element-level phases ---------------------------------------------------
+  template <class F>
+  void for_each_instance(F&& f) {
+    m_.for_each_instances([&](auto& vec) {
+      for (auto& in : vec) f(in);
+    });
+  }
+  element_context context_for(auto& in) {
+    using E = std::remove_cvref_t<decltype(in.element)>;
+    element_context ctx(E::passport.name, in.name, &log_);
+    assembler<model_type>::bind(m_, in, ctx);
+    ctx.time = t_;
+    ctx.nstep = stats_.steps;
+    return ctx;
+  }
+
+  void new_integration() {
+    for_each_instance([&](auto& in) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (HasNewIntegration<E>) {
+        element_context ctx = context_for(in);
+        ctx.newint = true;
+        in.element.new_integration(ctx);
+      }
+    });
+    recommended_ = std::numeric_limits<double>::infinity();
+  }
+
+  void zero_step() {
+    const int nd = m_.dof_count();
+    s_.resize(nd);
+    prescribed_.assign(static_cast<std::size_t>(nd), 0);
+    prescribed_[0] = 1;
+    std::vector<std::string> driver(static_cast<std::size_t>(nd));
+    driver[0] = "the ground";
+    // Sources that prescribe motion take their DOF out of the unknowns.
+    for_each_instance([&](auto& in) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (PrescribesMotion<E>) {
+        const auto d = static_cast<std::size_t>(in.dofs[0]);
+        if (prescribed_[d]) {
+          error e(error_code::conflicting_initial,
+                  "DOF '" + m_.dof_name(static_cast<int>(d)) + "' is already driven by " + driver[d],
+                  std::string(E::passport.name), in.name, static_cast<long>(d));
+          log_.write(e);
+          throw e;
+        }
+        prescribed_[d] = 1;
+        driver[d] = std::string(E::passport.name) + " '" + in.name + "'";
+      }
+    });
+    new_integration();
+    // Initial conditions (zero step), with conflict detection (code 90).
+    std::vector<std::string> set_u(static_cast<std::size_t>(nd)), set_v(set_u);
+    for_each_instance([&](auto& in) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (HasZeroStep<E>) {
+        element_context ctx = context_for(in);
+        ctx.newint = true;
+        initial_values<element_traits<E>::n> iv;
+        in.element.zero_step(iv, ctx);
+        for (int k = 0; k < element_traits<E>::n; ++k) {
+          const auto d = static_cast<std::size_t>(in.dofs[static_cast<std::size_t>(k)]);
+          if (iv.has_displacement(k)) apply_initial(ctx, d, iv.displacement(k), s_.u, set_u, driver, "displacement");
+          if (iv.has_velocity(k)) apply_initial(ctx, d, iv.velocity(k), s_.v, set_v, driver, "velocity");
+        }
+      }
+    });
+    apply_sources(t_);
+    build();
+    started_ = true;
+    initial_acceleration();
+    // Flows and work vectors at t0 (no Jacobian needed), then accept the zero step.
+    evaluate({0, 0, 0}, 0.0, false);
+    commit();
+    notify();
+  }
+
+  void apply_initial(element_context& ctx, std::size_t d, double value, Eigen::VectorXd& target,
+                     std::vector<std::string>& set_by, const std::vector<std::string>& driver,
+                     const char* what) {
+    if (prescribed_[d]) {
+      ctx.fail(error_code::conflicting_initial, std::string("initial ") + what + " on DOF '" +
+                                                    m_.dof_name(static_cast<int>(d)) + "', which is driven by " +
+                                                    driver[d]);
+    }
+    const auto i = static_cast<Eigen::Index>(d);
+    if (!set_by[d].empty() && target(i) != value)
+      ctx.fail(error_code::conflicting_initial,
+               std::string("initial ") + what + " " + num(value) + " on DOF '" + m_.dof_name(static_cast<int>(d)) +
+                   "' conflicts with " + num(target(i)) + " set by '" + set_by[d] + "'");
+    target(i) = value;
+    set_by[d] = std::string(ctx.instance());
+  }
+
+  void apply_sources(double t) {
+    for_each_instance([&](auto& in) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (PrescribesMotion<E>) {
+        const kinematics k = in.element.motion(t);
+        const auto d = static_cast<Eigen::Index>(in.dofs[0]);
+        s_.u(d) = k.u;
+        s_.v(d) = k.v;
+        s_.a(d) = k.a;
+      }
+    });
+  }
+
+  void build() {
+    if (prescribed_.size() != static_cast<std::size_t>(m_.dof_count())) {
+      // DOFs were added after the zero step (internal or new): they start at rest.
+      const auto old = static_cast<Eigen::Index>(prescribed_.size());
+      prescribed_.resize(static_cast<std::size_t>(m_.dof_count()), 0);
+      global_state g;
+      g.resize(m_.dof_count());
+      g.u.head(old) = s_.u;
+      g.v.head(old) = s_.v;
+      g.a.head(old) = s_.a;
+      s_ = g;
+    }
+    asm_.build(m_, prescribed_);
+    const int ne = asm_.equations();
+    dv_.setZero(ne);
+    rhs_.resize(static_cast<std::size_t>(ne));
+    s0_ = s_;
+    try {
+      solver_.analyze(asm_.pattern());
+    } catch (const error& e) {
+      rethrow_singular(e);
+    }
+  }
+
+  /// Names the DOF of a singular equation and the elements on it.
+  [[noreturn]] void rethrow_singular(const error& e) {
+    if (e.dof() < 0 || e.dof() >= asm_.equations()) {
+      log_.write(e);
+      throw e;
+    }
+    const int d = asm_.dof_of(static_cast<int>(e.dof()));
+    std::string on;
+    m_.for_each_instances([&](const auto& vec) {
+      for (const auto& in : vec)
+        if (std::find(in.dofs.begin(), in.dofs.end(), d) != in.dofs.end()) {
+          using T = std::remove_cvref_t<decltype(in.element)>;
+          if (!on.empty()) on += ", ";
+          on += std::string(T::passport.name) + " '" + in.name + "'";
+        }
+    });
+    std::string msg = e.code() == error_code::structurally_singular
+                          ? "DOF '" + m_.dof_name(d) + "' has no Jacobian entry: no element acts on it"
+                          : "the Newton matrix is singular at DOF '" + m_.dof_name(d) + "' (elements on it: " +
+                                (on.empty() ? std::string("none") : on) +
+                                "); a DOF needs stiffness, viscosity or mass, or a support";
+    error out(e.code(), msg + " [t = " + num(t_) + "]", {}, {}, d);
+    log_.write(out);
+    throw out;
+  }
+
+  void initial_acceleration() {
+    if constexpr (!assembler<model_type>::any_m) {
+      return;
+    } else {
+      evaluate({0, 0, 1}, 0.0, true);
+      const int ne = asm_.equations();
+      for (int i = 0; i < ne; ++i) rhs_[static_cast<std::size_t>(i)] = -asm_.residual()(asm_.dof_of(i));
+      try {
+        solver_.factorize(asm_.values());
+        ++stats_.factorizations;
+        solver_.solve(rhs_);
+        bool finite = true;
+        for (double x : rhs_) finite = finite && std::isfinite(x);
+        if (!finite) throw error(error_code::singular_matrix, "non-finite initial acceleration");
+        for (int i = 0; i < ne; ++i) s_.a(asm_.dof_of(i)) += rhs_[static_cast<std::size_t>(i)];
+      } catch (const error& e) {
+        if (e.code() != error_code::singular_matrix) throw;
+        std::string where =
+            e.dof() >= 0 && e.dof() < ne ? " (DOF '" + m_.dof_name(asm_.dof_of(static_cast<int>(e.dof()))) + "')" : "";
+        log_.write("warning: the inertia matrix is singular" + where +
+                   ": the run starts with zero initial accelerations on the free DOFs");
+        for (int i = 0; i < ne; ++i) s_.a(asm_.dof_of(i)) = 0;
+      }
+    }
+  }
+
+  void evaluate(const jacobian_coefficients& c, double h, bool jac, int niter = 0) {
+    call_info info{t_, h, stats_.steps, niter, jac, &log_};
+    ++stats_.evaluations;
+    asm_.evaluate(m_, s_, c, info);
+  }
+
+  /// One step from t_ to t_ + h. Returns false (state restored) when Newton did
+  /// not converge or an element reported a singular situation.
+  bool step(double h) {
+    s0_ = s_;
+    const double t0 = t_;
+    const int ne = asm_.equations();
+    const auto& nw = opt_.newton;
+    t_ = t0 + h;
+    apply_sources(t_);
+    for (int i = 0; i < ne; ++i) {
+      const auto d = asm_.dof_of(i);
+      s_.v(d) = scheme_.predict(s0_.u(d), s0_.v(d), s0_.a(d), h);
+      scheme_.complete(s0_.u(d), s0_.v(d), s0_.a(d), h, s_.v(d), s_.u(d), s_.a(d));
+    }
+    const jacobian_coefficients c = scheme_.coefficients(h);
+    bool correction_ok = false;
+    last_failure_.reset();
+    try {
+      for (int k = 0;; ++k) {
+        evaluate(c, h, true, k);
+        bool residual_ok = true;
+        for (int i = 0; i < ne && residual_ok; ++i) {
+          const auto d = asm_.dof_of(i);
+          residual_ok = std::abs(asm_.residual()(d)) <= nw.dabsi + nw.drlti * asm_.abs_sum()(d);
+        }
+        if (k > 0 && correction_ok && residual_ok && (!nw.second || k >= 2)) {
+          stats_.last_iterations = k;
+          stats_.last_step = h;
+          ++stats_.steps;
+          recommended_ = asm_.recommended_step();
+          commit();
+          return true;
+        }
+        if (k >= nw.itr) break;
+        for (int i = 0; i < ne; ++i) rhs_[static_cast<std::size_t>(i)] = -asm_.residual()(asm_.dof_of(i));
+        solver_.factorize(asm_.values());
+        ++stats_.factorizations;
+        solver_.solve(rhs_);
+        ++stats_.newton_iterations;
+        correction_ok = true;
+        bool finite = true;
+        for (int i = 0; i < ne; ++i) {
+          const auto d = asm_.dof_of(i);
+          const double dv = rhs_[static_cast<std::size_t>(i)];
+          finite = finite && std::isfinite(dv);
+          s_.v(d) += dv;
+          correction_ok = correction_ok && std::abs(dv) <= nw.dabsu + nw.drltu * std::abs(s_.v(d));
+          scheme_.complete(s0_.u(d), s0_.v(d), s0_.a(d), h, s_.v(d), s_.u(d), s_.a(d));
+        }
+        if (!finite) break;
+      }
+    } catch (const error& e) {
+      if (e.code() != error_code::singular_situation && e.code() != error_code::singular_matrix) throw;
+      last_failure_ = e;
+    }
+    s_ = s0_;
+    t_ = t0;
+    return false;
+  }
+
+  [[noreturn]] void fail_at_smin(double h) {
+    if (last_failure_) {
+      if (last_failure_->code() == error_code::singular_matrix) rethrow_singular(*last_failure_);
+      error e(last_failure_->code(),
+              last_failure_->message() + " (persists at SMIN = " + num(opt_.smin) + ", t = " + num(t_) + ")",
+              last_failure_->element_type(), last_failure_->instance(), last_failure_->dof());
+      log_.write(e);
+      throw e;
+    }
+    // Name the DOF with the largest residual at the last attempt.
+    int worst = -1;
+    double wr = -1;
+    for (int i = 0; i < asm_.equations(); ++i) {
+      const double r = std::abs(asm_.residual()(asm_.dof_of(i)));
+      if (!(r <= wr)) {
+        wr = r;
+        worst = asm_.dof_of(i);
+      }
+    }
+    error e(error_code::newton_failure,
+            "Newton does not converge at SMIN: step " + num(h) + " at t = " + num(t_) +
+                (worst >= 0 ? "; largest residual " + num(wr) + " on DOF '" + m_.dof_name(worst) + "'" : ""),
+            {}, {}, worst);
+    log_.write(e);
+    throw e;
+  }
+
+  void grow() {
+    if (h_nominal_ < opt_.smax && ++successes_ >= 3) {
+      h_nominal_ = std::min(2 * h_nominal_, opt_.smax);
+      successes_ = 0;
+    }
+  }
+
+  /// Accepts the step: NEW state to OLD, element commit hooks, source reactions.
+  void commit() {
+    m_.old_state_pool() = m_.new_state_pool();
+    for_each_instance([&](auto& in) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (requires(E& e, element_context& c) { e.commit(c); }) {
+        element_context ctx = context_for(in);
+        in.element.commit(ctx);
+      }
+      if constexpr (PrescribesMotion<E>) {
+        // W(1) of a source: the force it applies to its DOF (the reaction).
+        if (in.work_size > 0) m_.work_pool()[in.work_offset] = asm_.residual()(in.dofs[0]);
+      }
+    });
+  }
+
+  void notify() {
+    for (auto& f : observers_) f(*this);
+  }
+
+  model_type& m_;
+  Scheme scheme_;
+  Solver solver_;
+  assembler<model_type> asm_;
+  diagnostics log_;
+  std::vector<observer> observers_;
+  global_state s_, s0_;
+  std::vector<char> prescribed_;
+  Eigen::VectorXd dv_;
+  std::vector<double> rhs_;
+  run_options opt_{};
+  run_statistics stats_{};
+  std::optional<error> last_failure_;
+  double t_ = 0;
+  double h_nominal_ = 0;
+  double recommended_ = std::numeric_limits<double>::infinity();
+  int successes_ = 0;
+  bool started_ = false;
+};
+
+/// Deduction guides: `simulation sim(model, newmark{})`.
+template <class M, Integrator S>
+simulation(M&, S) -> simulation<M, S>;
+template <class M>
+simulation(M&) -> simulation<M>;
+
+}  // namespace pradis

@@ -1,0 +1,291 @@
+#pragma once
+/// \file
+/// Models built in code and checked at compile time. A model lists the element
+/// types it may hold; only those are compiled in. It owns the DOFs (DOF 0 is the
+/// ground), the named element instances with their DOF connections, parameters,
+/// work and state vectors, and the internal DOFs each instance needs (ENT).
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <unordered_map>
+#include <vector>
+
+#include "pradis/core/element.hpp"
+#include "pradis/core/error.hpp"
+#include "pradis/core/type_list.hpp"
+
+namespace pradis {
+
+/// A degree of freedom (node) of a model. DOF 0 is the ground: fixed at zero.
+struct dof {
+  int index = 0;
+  friend constexpr bool operator==(dof, dof) = default;
+};
+
+/// Handle to an element instance of type E in a model.
+template <class E>
+struct element_ref {
+  int index = -1;
+};
+
+/// One placed element: the element object, its instance name, the global
+/// indices of its N = EXT + ENT DOFs, its parameter count and where its work and
+/// state vectors live in the model's pools.
+template <class E>
+struct element_instance {
+  static constexpr int n = element_traits<E>::n;
+  E element;
+  std::string name;
+  std::array<int, n> dofs{};
+  int npar = 0;
+  std::size_t work_offset = 0, work_size = 0;
+  std::size_t state_offset = 0, state_size = 0;
+};
+
+/// Where an instance lives: the index of its type in the model's list and its index among that type's instances.
+struct instance_location {
+  std::size_t type = 0;
+  int index = -1;
+};
+
+/// A model over the element types Es. Each Es must satisfy Element; listing the
+/// same type twice or two types with the same catalog name does not compile.
+template <class... Es>
+class model {
+  static_assert(sizeof...(Es) > 0, "pradis: a model must list at least one element type");
+  static_assert((check_element<Es>() && ...));
+  static_assert(distinct_v<Es...>, "pradis: a model lists the same element type twice");
+
+ public:
+  /// The element types of this model.
+  using element_types = type_list<Es...>;
+
+  model() { dof_names_.push_back("ground"); }
+
+  /// The ground DOF (index 0), fixed at zero displacement.
+  static constexpr dof ground() noexcept { return dof{0}; }
+
+  /// Adds a DOF; the name is used in messages and outputs (default "dof N").
+  dof add_dof(std::string name = {}) {
+    const int i = static_cast<int>(dof_names_.size());
+    dof_names_.push_back(name.empty() ? "dof " + std::to_string(i) : std::move(name));
+    return dof{i};
+  }
+  /// Adds `count` DOFs and returns them.
+  std::vector<dof> add_dofs(int count, const std::string& prefix = {}) {
+    std::vector<dof> out;
+    out.reserve(static_cast<std::size_t>(count));
+    for (int k = 0; k < count; ++k)
+      out.push_back(add_dof(prefix.empty() ? std::string{} : prefix + std::to_string(k + 1)));
+    return out;
+  }
+  /// Number of DOFs including the ground and the internal DOFs.
+  int dof_count() const noexcept { return static_cast<int>(dof_names_.size()); }
+  /// Name of a DOF.
+  const std::string& dof_name(int i) const { return dof_names_.at(static_cast<std::size_t>(i)); }
+
+  /// Places an element of type E with typed parameters, connected to exactly
+  /// EXT DOFs (another count does not compile). Internal DOFs are added automatically.
+  template <class E, class... D>
+    requires(std::same_as<D, dof> && ...)
+  element_ref<E> add(std::string name, typename E::parameters p, D... d) {
+    static_assert(contains_v<E, Es...>, "pradis: this element type is not listed in the model's element types");
+    static_assert(sizeof...(D) == element_traits<E>::ext,
+                  "pradis: an element must be connected to exactly EXT DOFs (its passport's EXT)");
+    const std::array<dof, sizeof...(D)> ds{d...};
+    E e(p);
+    int npar = E::passport.par;
+    if constexpr (requires { e.parameter_count(); }) npar = e.parameter_count();
+    return place<E>(std::move(name), std::move(e), ds, npar);
+  }
+
+  /// Places an element of type E from the flat PAR vector, as the model language
+  /// does; DOF and parameter counts are checked at run time (codes 110 and 101).
+  template <class E>
+  element_ref<E> add_flat(std::string name, std::span<const dof> d, std::span<const double> par) {
+    static_assert(contains_v<E, Es...>, "pradis: this element type is not listed in the model's element types");
+    constexpr passport p = E::passport;
+    if (static_cast<int>(d.size()) != p.ext)
+      throw error(error_code::invalid_model,
+                  "element needs " + std::to_string(p.ext) + " DOFs (EXT), got " + std::to_string(d.size()),
+                  std::string(p.name), name);
+    check_parameter_count<E>(name, static_cast<int>(par.size()));
+    for (double x : par)
+      if (!std::isfinite(x))
+        throw error(error_code::invalid_parameter, "parameter list contains a non-finite number", std::string(p.name),
+                    name);
+    return place<E>(std::move(name), E::from_parameters(par), d, static_cast<int>(par.size()));
+  }
+
+  /// Places an element by its catalog name (e.g. "LINKD"), as the model language
+  /// does. Throws invalid_model for an unknown name.
+  instance_location add_by_name(std::string_view catalog_name, std::string name, std::span<const dof> d,
+                                std::span<const double> par) {
+    std::optional<instance_location> loc;
+    for_each_type([&]<class E>(std::type_identity<E>) {
+      if (!loc && E::passport.name == catalog_name)
+        loc = instance_location{index_of<E, Es...>(), add_flat<E>(std::move(name), d, par).index};
+    });
+    if (!loc) throw error(error_code::invalid_model, "unknown element type '" + std::string(catalog_name) + "'", {}, name);
+    return *loc;
+  }
+
+  /// Checks a parameter count against the passport's PAR/VPR rules (code 101).
+  template <class E>
+  static void check_parameter_count(const std::string& name, int npar) {
+    constexpr passport p = E::passport;
+    if (!p.parameter_count_ok(npar))
+      throw error(error_code::parameter_count,
+                  "got " + std::to_string(npar) + " parameters, the passport asks for " +
+                      std::string(p.parameter_rule()) + " = " + std::to_string(p.par),
+                  std::string(p.name), name);
+  }
+
+  /// Calls f(std::type_identity<E>{}) for every element type E of the model.
+  template <class F>
+  static void for_each_type(F&& f) {
+    (f(std::type_identity<Es>{}), ...);
+  }
+
+  /// The instances of type E.
+  template <class E>
+  std::vector<element_instance<E>>& instances() {
+    return std::get<std::vector<element_instance<E>>>(instances_);
+  }
+  template <class E>
+  const std::vector<element_instance<E>>& instances() const {
+    return std::get<std::vector<element_instance<E>>>(instances_);
+  }
+  /// Calls f(instances<E>()) for every type E.
+  template <class F>
+  void for_each_instances(F&& f) {
+    std::apply([&](auto&... v) { (f(v), ...); }, instances_);
+  }
+  template <class F>
+  void for_each_instances(F&& f) const {
+    std::apply([&](const auto&... v) { (f(v), ...); }, instances_);
+  }
+
+  /// The element object behind a handle (to read or replace its parameters).
+  template <class E>
+  E& element(element_ref<E> r) {
+    return instances<E>().at(static_cast<std::size_t>(r.index)).element;
+  }
+  /// The instance record behind a handle.
+  template <class E>
+  const element_instance<E>& instance(element_ref<E> r) const {
+    return instances<E>().at(static_cast<std::size_t>(r.index));
+  }
+  /// The global DOF of local DOF k (external first, then internal) of an instance.
+  template <class E>
+  dof dof_of(element_ref<E> r, int k) const {
+    return dof{instance(r).dofs.at(static_cast<std::size_t>(k))};
+  }
+
+  /// Finds an instance by name.
+  std::optional<instance_location> find(std::string_view name) const {
+    auto it = by_name_.find(std::string(name));
+    if (it == by_name_.end()) return std::nullopt;
+    return it->second;
+  }
+  /// Catalog name of the type of an instance.
+  std::string_view type_name(const instance_location& loc) const {
+    std::string_view out;
+    std::size_t i = 0;
+    ((i++ == loc.type ? (out = Es::passport.name, 0) : 0), ...);
+    return out;
+  }
+
+  /// Work vector of an instance (the user's W:Name(k) is work(...)[k-1]).
+  template <class E>
+  std::span<double> work(element_ref<E> r) {
+    const auto& in = instance(r);
+    return {work_.data() + in.work_offset, in.work_size};
+  }
+  /// Work vector of an instance by name (throws invalid_model if unknown).
+  std::span<const double> work(std::string_view name) const {
+    auto loc = find(name);
+    if (!loc) throw error(error_code::invalid_model, "no element instance named '" + std::string(name) + "'");
+    std::span<const double> out;
+    std::size_t i = 0;
+    (
+        [&] {
+          if (i++ == loc->type) {
+            const auto& in = instances<Es>()[static_cast<std::size_t>(loc->index)];
+            out = {work_.data() + in.work_offset, in.work_size};
+          }
+        }(),
+        ...);
+    return out;
+  }
+  /// The flat work pool (all instances).
+  std::vector<double>& work_pool() noexcept { return work_; }
+  /// The OLD (accepted) state pool and the NEW (being computed) state pool.
+  std::vector<double>& old_state_pool() noexcept { return old_state_; }
+  std::vector<double>& new_state_pool() noexcept { return new_state_; }
+  /// Total number of element instances.
+  std::size_t element_count() const noexcept { return by_name_.size(); }
+  /// A counter that changes whenever DOFs or elements are added (topology changes).
+  std::size_t topology_version() const noexcept { return version_ + dof_names_.size(); }
+
+ private:
+  template <class E, std::size_t K>
+  element_ref<E> place(std::string name, E e, std::span<const dof, K> d, int npar) {
+    constexpr passport p = E::passport;
+    if (name.empty()) name = std::string(p.name) + "#" + std::to_string(by_name_.size() + 1);
+    if (by_name_.count(name))
+      throw error(error_code::invalid_model, "an element named '" + name + "' already exists", std::string(p.name),
+                  name);
+    element_instance<E> in{std::move(e), name, {}, npar, 0, 0, 0, 0};
+    for (std::size_t k = 0; k < d.size(); ++k) {
+      if (d[k].index < 0 || d[k].index >= dof_count())
+        throw error(error_code::invalid_model,
+                    "DOF " + std::to_string(d[k].index) + " does not exist in this model (connection " +
+                        std::to_string(k + 1) + ")",
+                    std::string(p.name), name);
+      in.dofs[k] = d[k].index;
+    }
+    for (int k = 0; k < p.ent; ++k)
+      in.dofs[static_cast<std::size_t>(p.ext + k)] = add_dof(name + ".internal" + std::to_string(k + 1)).index;
+    in.work_offset = work_.size();
+    in.work_size = static_cast<std::size_t>(p.work_size(npar));
+    work_.resize(work_.size() + in.work_size, 0.0);
+    in.state_offset = old_state_.size();
+    in.state_size = static_cast<std::size_t>(p.state_size(npar));
+    old_state_.resize(old_state_.size() + in.state_size, 0.0);
+    new_state_.resize(old_state_.size(), 0.0);
+    auto& v = instances<E>();
+    v.push_back(std::move(in));
+    const int idx = static_cast<int>(v.size()) - 1;
+    by_name_.emplace(name, instance_location{index_of<E, Es...>(), idx});
+    ++version_;
+    return element_ref<E>{idx};
+  }
+  template <class E, std::size_t K>
+  element_ref<E> place(std::string name, E e, const std::array<dof, K>& d, int npar) {
+    return place<E, K>(std::move(name), std::move(e), std::span<const dof, K>(d), npar);
+  }
+  template <class E>
+  element_ref<E> place(std::string name, E e, std::span<const dof> d, int npar) {
+    return place<E, std::dynamic_extent>(std::move(name), std::move(e), d, npar);
+  }
+
+  std::vector<std::string> dof_names_;
+  std::tuple<std::vector<element_instance<Es>>...> instances_;
+  std::unordered_map<std::string, instance_location> by_name_;
+  std::vector<double> work_, old_state_, new_state_;
+  std::size_t version_ = 0;
+};
+
+/// A model over the types of a type_list: model_of<type_list<A, B>> is model<A, B>.
+template <class L>
+using model_of = apply_t<model, L>;
+
+}  // namespace pradis
