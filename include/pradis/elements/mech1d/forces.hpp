@@ -28,6 +28,8 @@ struct constant_force {
   };
   parameters p;
   explicit constant_force(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {10.0}; }
   static constant_force from_parameters(std::span<const double> v) { return constant_force({v[0]}); }
   void new_integration(element_context& ctx) const {
     if (!std::isfinite(p.force)) ctx.invalid_parameter("force P must be finite");
@@ -57,6 +59,8 @@ struct sine_force {
   };
   parameters p;
   explicit sine_force(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {5.0, 2.0, 30.0, 1.0}; }
   static sine_force from_parameters(std::span<const double> v) { return sine_force({v[0], v[1], v[2], v[3]}); }
   void new_integration(element_context& ctx) const {
     if (!std::isfinite(p.amplitude) || !std::isfinite(p.phase_deg) || !std::isfinite(p.offset))

@@ -29,6 +29,8 @@ struct initial_displacement {
   };
   parameters p;
   explicit initial_displacement(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {0.25}; }
   static initial_displacement from_parameters(std::span<const double> v) { return initial_displacement({v[0]}); }
   void new_integration(element_context& ctx) const {
     if (!std::isfinite(p.u0)) ctx.invalid_parameter("initial displacement must be finite");
@@ -62,6 +64,8 @@ struct initial_velocity {
   };
   parameters p;
   explicit initial_velocity(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {1.5}; }
   static initial_velocity from_parameters(std::span<const double> v) { return initial_velocity({v[0]}); }
   void new_integration(element_context& ctx) const {
     if (!std::isfinite(p.v0)) ctx.invalid_parameter("initial velocity must be finite");

@@ -25,6 +25,8 @@ struct linear_damper {
   };
   parameters p;
   explicit linear_damper(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {3.0}; }
   static linear_damper from_parameters(std::span<const double> v) { return linear_damper({v[0]}); }
   void new_integration(element_context& ctx) const {
     if (!(p.c >= 0)) ctx.invalid_parameter("damping coefficient c = " + std::to_string(p.c) + " must be >= 0");

@@ -25,6 +25,8 @@ struct linear_spring {
   };
   parameters p;
   explicit linear_spring(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {100.0}; }
   static linear_spring from_parameters(std::span<const double> v) { return linear_spring({v[0]}); }
   void new_integration(element_context& ctx) const {
     if (!(p.k >= 0)) ctx.invalid_parameter("stiffness k = " + std::to_string(p.k) + " must be >= 0");

@@ -24,6 +24,8 @@ struct point_mass {
   };
   parameters p;
   explicit point_mass(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {2.0}; }
   static point_mass from_parameters(std::span<const double> v) { return point_mass({v[0]}); }
   void new_integration(element_context& ctx) const {
     if (!(p.m >= 0)) ctx.invalid_parameter("mass m = " + std::to_string(p.m) + " must be >= 0");

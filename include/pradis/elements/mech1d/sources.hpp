@@ -42,6 +42,8 @@ struct displacement_source {
   };
   parameters p;
   explicit displacement_source(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {0.1, 2.0, 30.0, 0.5}; }
   static displacement_source from_parameters(std::span<const double> v) {
     return displacement_source({v[0], v[1], v[2], v[3]});
   }
@@ -78,6 +80,8 @@ struct velocity_source {
   };
   parameters p;
   explicit velocity_source(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {0.2, 1.0, 0.0, 0.3}; }
   static velocity_source from_parameters(std::span<const double> v) {
     return velocity_source({v[0], v[1], v[2], v[3]});
   }

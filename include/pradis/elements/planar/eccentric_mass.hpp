@@ -43,6 +43,8 @@ struct eccentric_mass {
   parameters p;
 
   explicit eccentric_mass(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {1.5, 0.2, 30.0}; }
   static eccentric_mass from_parameters(std::span<const double> v) { return eccentric_mass({v[0], v[1], v[2]}); }
 
   void new_integration(element_context& ctx) const {

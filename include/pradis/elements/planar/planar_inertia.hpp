@@ -33,6 +33,8 @@ struct planar_inertia {
   parameters p;
 
   explicit planar_inertia(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {2.0, 0.1}; }
   static planar_inertia from_parameters(std::span<const double> v) { return planar_inertia({v[0], v[1]}); }
 
   void new_integration(element_context& ctx) const {

@@ -42,6 +42,8 @@ struct planar_link {
   parameters p;
 
   explicit planar_link(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {0.0, 0.0, 1.0, 0.5, 5e3}; }
   static planar_link from_parameters(std::span<const double> v) { return planar_link({v[0], v[1], v[2], v[3], v[4]}); }
 
   /// NEWINT: parameter checks and the initial length into W(1).
@@ -73,6 +75,12 @@ struct planar_link {
         kxy, kyy, -kxy, -kyy,       //
         -kxx, -kxy, kxx, kxy,       //
         -kxy, -kyy, kxy, kyy;
+  }
+
+  /// Whether a state is admissible for checks (the link keeps at least 10% of its initial length).
+  bool admissible(const local_input<planar_link>& in) const {
+    const double dx = (p.xb0 + in.u(2)) - (p.xa0 + in.u(0)), dy = (p.yb0 + in.u(3)) - (p.ya0 + in.u(1));
+    return std::hypot(dx, dy) > 0.1 * std::hypot(p.xb0 - p.xa0, p.yb0 - p.ya0);
   }
 
   /// Lengths below this (relative to L0, absolute below 1 m) count as zero.

@@ -1,0 +1,141 @@
+// The all-elements test: every element type of the built-in library (the type
+// list pradis::elements::library_elements, so a new element is covered
+// automatically) passes the finite-difference Jacobian check at many random
+// states, has help text whose line counts match its passport, and rejects bad
+// flat parameter counts. Reference: PRADIS element developer's manual, 3.6.8.
+
+#include <doctest/doctest.h>
+
+#include <random>
+#include <sstream>
+
+#include "pradis/elements/library.hpp"
+#include "pradis/testing/jacobian_check.hpp"
+
+using namespace pradis;
+
+namespace {
+
+template <class E>
+void check_one_element() {
+  constexpr passport p = E::passport;
+  CAPTURE(p.name);
+  // Help text: one line per external DOF, per parameter (fixed count), per work entry.
+  CHECK(!E::help.title.empty());
+  CHECK(!E::help.name.empty());
+  CHECK(!E::help.field.empty());
+  CHECK(help_lines(E::help.dofs) == p.ext);
+  if (p.vpr == 0) CHECK(help_lines(E::help.parameters) == p.par);
+  if (!E::help.work.empty()) CHECK(help_lines(E::help.work) == p.wrk);
+  CHECK(!E::help.special.empty());
+
+  testing::jacobian_checker<E> chk(E(E::example()));
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  int checked = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    local_input<E> in;
+    // Large displacements and rotations: up to +-3 (m or rad); velocities and accelerations up to +-10.
+    const double big = trial < 100 ? 0.3 : 3.0;
+    for (int k = 0; k < element_traits<E>::n; ++k) {
+      in.u(k) = big * uni(rng);
+      in.v(k) = 10 * uni(rng);
+      in.a(k) = 10 * uni(rng);
+    }
+    in.t = 1.0 + uni(rng);
+    if constexpr (requires(const E& e) { e.admissible(in); })
+      if (!chk.element().admissible(in)) continue;
+    auto r = chk.check(in);
+    ++checked;
+    if (!r.ok) {
+      std::ostringstream os;
+      r.print(os);
+      FAIL_CHECK(os.str());
+      break;
+    }
+  }
+  CHECK(checked >= 150);
+}
+
+template <class... Es>
+void check_all(type_list<Es...>) {
+  (check_one_element<Es>(), ...);
+}
+
+// A deliberately wrong LINKD: the manual's dF1/dX2 with the wrong sign.
+struct wrong_link : elements::planar_link {
+  static constexpr pradis::passport passport{.name = "WRONG", .ext = 4, .par = 5, .wrk = 3, .adr = 1, .ign = 23};
+  using elements::planar_link::planar_link;
+  static wrong_link from_parameters(std::span<const double> v) { return wrong_link({v[0], v[1], v[2], v[3], v[4]}); }
+  void evaluate(const local_input<wrong_link>& in, local_output<wrong_link>& out, element_context& ctx) const {
+    local_input<planar_link> i2;
+    i2.u = in.u;
+    local_output<planar_link> o2;
+    planar_link::evaluate(i2, o2, ctx);
+    out.f = o2.f;
+    out.K = o2.K;
+    out.K(0, 1) = -out.K(0, 1);
+  }
+};
+
+// An element that declares IGN=2 (no velocity block) but whose flow depends on velocity.
+struct hidden_damper {
+  static constexpr pradis::passport passport{.name = "HIDDEN", .ext = 1, .par = 1, .adr = 1, .ign = 23};
+  static constexpr element_help help{.title = "test", .name = "test", .field = "test", .dofs = "1", .parameters = "1",
+                                     .work = "", .special = "none"};
+  struct parameters {
+    double c = 2;
+  } p;
+  explicit hidden_damper(parameters q) : p(q) {}
+  static hidden_damper from_parameters(std::span<const double> v) { return hidden_damper({v[0]}); }
+  void evaluate(const local_input<hidden_damper>& in, local_output<hidden_damper>& out, element_context&) const {
+    out.f(0) = p.c * in.v(0) + in.u(0);
+    out.K(0, 0) = 1.0;
+  }
+};
+
+}  // namespace
+
+TEST_SUITE("testing/jacobian_check") {
+  TEST_CASE("every library element passes the finite-difference Jacobian check at 200 random states") {
+    check_all(elements::library_elements{});
+  }
+
+  TEST_CASE("the checker catches a deliberately wrong Jacobian entry and names it") {
+    testing::jacobian_checker<wrong_link> chk(wrong_link({0, 0, 1, 0.5, 5e3}));
+    local_input<wrong_link> in;
+    in.u << 0.1, -0.2, 0.05, 0.3;
+    auto r = chk.check(in);
+    CHECK_FALSE(r.ok);
+    REQUIRE(!r.problems.empty());
+    CHECK(r.problems.front().find("F1/du2") != std::string::npos);
+    CHECK(r.problems.front().find("does not shrink") != std::string::npos);
+  }
+
+  TEST_CASE("the checker catches a flow that depends on a variable whose block IGN declares absent") {
+    testing::jacobian_checker<hidden_damper> chk(hidden_damper({2.0}));
+    local_input<hidden_damper> in;
+    in.v(0) = 1.0;
+    auto r = chk.check(in);
+    CHECK_FALSE(r.ok);
+    REQUIRE(!r.problems.empty());
+    CHECK(r.problems.front().find("declared absent") != std::string::npos);
+  }
+
+  TEST_CASE("the checker's difference shrinks with the step for a correct element (LINKD)") {
+    // Steps large enough that truncation, not round-off, dominates: the error must fall as h^2.
+    testing::jacobian_checker<elements::planar_link> chk(elements::planar_link({0, 0, 1, 0.5, 5e3}), 5,
+                                                         {.rel_step = 0, .abs_step = 1e-3, .tolerance = 1e-2});
+    local_input<elements::planar_link> in;
+    in.u << 0.3, -0.2, -0.4, 0.6;
+    auto r = chk.check(in);
+    CHECK(r.ok);
+    double fine = 0, coarse = 0;
+    for (const auto& e : r.entries) {
+      fine = std::max(fine, std::abs(e.numeric - e.analytic));
+      coarse = std::max(coarse, std::abs(e.numeric_coarse - e.analytic));
+    }
+    CHECK(fine < coarse);
+    CHECK(fine < 0.05 * coarse);  // 10x smaller step, ~100x smaller error
+  }
+}
