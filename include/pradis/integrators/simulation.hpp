@@ -97,10 +97,10 @@ class simulation<model<Es...>, Scheme, Solver> {
     validate(opt);
     const run_statistics before = stats_;
     opt_ = opt;
+    if (!(opt.end > t_)) fail_option("END = " + num(opt.end) + " must be after the current time " + num(t_));
     if (!started_) {
       zero_step();
     } else {
-      if (!(opt.end > t_)) fail_option("END = " + num(opt.end) + " must be after the current time " + num(t_));
       if (!asm_.built_for(m_)) build();
       new_integration();
     }
@@ -113,9 +113,18 @@ class simulation<model<Es...>, Scheme, Solver> {
       double h = h_nominal_;
       if (!opt.ignore && recommended_ < h) h = std::max(recommended_, opt.smin);
       bool clipped = false;
+      const double remaining = target - t_;
       if (t_ + h >= target - 1e-9 * h) {
-        h = target - t_;
+        h = remaining;
         clipped = true;
+      } else if (remaining < 2 * h) {
+        h = 0.5 * remaining;  // two equal steps rather than a full one and a sliver
+      }
+      if (!(t_ + h > t_)) {
+        error e(error_code::step_too_small,
+                "the step " + num(h) + " no longer advances the time " + num(t_) + " in double precision");
+        log_.write(e);
+        throw e;
       }
       if (step(h)) {
         if (!clipped || h >= h_nominal_) grow();
@@ -361,26 +370,61 @@ class simulation<model<Es...>, Scheme, Solver> {
     throw out;
   }
 
+  /// Consistent initial derivatives at the zero step. The unknown of each free
+  /// DOF is its acceleration if it has inertia (dF/da diagonal nonzero), else its
+  /// velocity if it has viscosity (a first-order DOF, e.g. the series point of a
+  /// spring and a damper), else nothing (an algebraic DOF: its equation is met
+  /// by Newton at the first step). One Newton step on F(u0, v0, a0, 0) = 0 with
+  /// J = M (inertial columns) + C (viscous columns) + I (algebraic columns).
+  /// Without it the trapezoidal u-v relation of the Newmark family would carry
+  /// an inconsistent start as an undamped oscillation of v.
   void initial_acceleration() {
-    if constexpr (!assembler<model_type>::any_m) {
+    using asm_t = assembler<model_type>;
+    if constexpr (!asm_t::any_m && !asm_t::any_c) {
       return;
     } else {
-      evaluate({0, 0, 1}, 0.0, true);
       const int ne = asm_.equations();
+      const auto& pat = asm_.pattern();
+      evaluate({0, 0, 1}, 0.0, true);
+      std::vector<double> mvals(asm_.values().begin(), asm_.values().end());
+      std::vector<double> cvals(mvals.size(), 0.0);
       for (int i = 0; i < ne; ++i) rhs_[static_cast<std::size_t>(i)] = -asm_.residual()(asm_.dof_of(i));
+      if constexpr (asm_t::any_c) {
+        evaluate({0, 1, 0}, 0.0, true);
+        cvals.assign(asm_.values().begin(), asm_.values().end());
+      }
+      std::vector<char> kind(static_cast<std::size_t>(ne), 0);  // 1 inertial, 2 viscous, 0 algebraic
+      for (int i = 0; i < ne; ++i) {
+        const int q = pat.find(i, i);
+        if (q >= 0 && mvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(i)] = 1;
+        else if (q >= 0 && cvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(i)] = 2;
+      }
+      std::vector<double> j(mvals.size(), 0.0);
+      for (int r = 0; r < ne; ++r)
+        for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
+          const int c = pat.col[static_cast<std::size_t>(q)];
+          const auto sq = static_cast<std::size_t>(q);
+          const char k = kind[static_cast<std::size_t>(c)];
+          j[sq] = k == 1 ? mvals[sq] : (k == 2 ? cvals[sq] : (r == c ? 1.0 : 0.0));
+        }
       try {
-        solver_.factorize(asm_.values());
+        solver_.factorize(j);
         ++stats_.factorizations;
         solver_.solve(rhs_);
         bool finite = true;
         for (double x : rhs_) finite = finite && std::isfinite(x);
-        if (!finite) throw error(error_code::singular_matrix, "non-finite initial acceleration");
-        for (int i = 0; i < ne; ++i) s_.a(asm_.dof_of(i)) += rhs_[static_cast<std::size_t>(i)];
+        if (!finite) throw error(error_code::singular_matrix, "non-finite initial derivatives");
+        for (int i = 0; i < ne; ++i) {
+          const auto d = asm_.dof_of(i);
+          const double z = rhs_[static_cast<std::size_t>(i)];
+          if (kind[static_cast<std::size_t>(i)] == 1) s_.a(d) += z;
+          if (kind[static_cast<std::size_t>(i)] == 2) s_.v(d) += z;
+        }
       } catch (const error& e) {
         if (e.code() != error_code::singular_matrix) throw;
         std::string where =
             e.dof() >= 0 && e.dof() < ne ? " (DOF '" + m_.dof_name(asm_.dof_of(static_cast<int>(e.dof()))) + "')" : "";
-        log_.write("warning: the inertia matrix is singular" + where +
+        log_.write("warning: no consistent initial derivatives" + where +
                    ": the run starts with zero initial accelerations on the free DOFs");
         for (int i = 0; i < ne; ++i) s_.a(asm_.dof_of(i)) = 0;
       }

@@ -237,7 +237,7 @@ class model {
 
  private:
   template <class E, std::size_t K>
-  element_ref<E> place(std::string name, E e, std::span<const dof, K> d, int npar) {
+  element_ref<E> place_impl(std::string name, E e, std::span<const dof, K> d, int npar) {
     constexpr passport p = E::passport;
     if (name.empty()) name = std::string(p.name) + "#" + std::to_string(by_name_.size() + 1);
     if (by_name_.count(name))
@@ -270,11 +270,11 @@ class model {
   }
   template <class E, std::size_t K>
   element_ref<E> place(std::string name, E e, const std::array<dof, K>& d, int npar) {
-    return place<E, K>(std::move(name), std::move(e), std::span<const dof, K>(d), npar);
+    return place_impl<E, K>(std::move(name), std::move(e), std::span<const dof, K>(d), npar);
   }
   template <class E>
   element_ref<E> place(std::string name, E e, std::span<const dof> d, int npar) {
-    return place<E, std::dynamic_extent>(std::move(name), std::move(e), d, npar);
+    return place_impl<E, std::dynamic_extent>(std::move(name), std::move(e), d, npar);
   }
 
   std::vector<std::string> dof_names_;

@@ -1,0 +1,153 @@
+// Models: internal DOFs (ENT) allocated automatically, variable parameter counts
+// (VPR) with state (STR/STP) and work (WRK/WRP) lengths, by-name lookup of work
+// vectors, and the analytic relaxation of a Maxwell element that lives on an
+// internal DOF.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "pradis/elements/library.hpp"
+#include "pradis/integrators/simulation.hpp"
+
+using namespace pradis;
+using namespace pradis::elements;
+
+namespace {
+
+// Maxwell element (spring k and damper c in series) between DOF 1 and the ground,
+// with the series point as an internal DOF (ENT = 1): flows on the external DOF
+// k (u1 - ui); on the internal DOF k (ui - u1) + c vi. ADR=1, IGN=3 (no inertia).
+struct maxwell {
+  static constexpr pradis::passport passport{.name = "MAXW", .ext = 1, .ent = 1, .par = 2, .wrk = 1, .adr = 1, .ign = 3};
+  static constexpr element_help help{.title = "Maxwell element to ground",
+                                     .name = "spring and damper in series, series point internal",
+                                     .field = "mechanics",
+                                     .dofs = "1 - the connected DOF",
+                                     .parameters = "1 - k\n2 - c",
+                                     .work = "1 - force",
+                                     .special = "none"};
+  struct parameters {
+    double k = 1, c = 1;
+  } p;
+  explicit maxwell(parameters q) : p(q) {}
+  static parameters example() { return {}; }
+  static maxwell from_parameters(std::span<const double> v) { return maxwell({v[0], v[1]}); }
+  void evaluate(const local_input<maxwell>& in, local_output<maxwell>& out, element_context& ctx) const {
+    const double f = p.k * (in.u(0) - in.u(1));
+    out.f << f, -f + p.c * in.v(1);
+    ctx.work[0] = f;
+    if (!out.want_jacobian) return;
+    out.K << p.k, -p.k, -p.k, p.k;
+    out.C << 0, 0, 0, p.c;
+  }
+};
+
+// Variable parameter count: odd number of parameters (VPR=11), STP=1, WRP=2.
+struct table_element {
+  static constexpr pradis::passport passport{
+      .name = "TAB", .ext = 1, .par = 1, .vpr = 11, .str = 1, .stp = 1, .wrk = 1, .wrp = 2, .adr = 1, .ign = 23};
+  static constexpr element_help help{.title = "t", .name = "t", .field = "t", .dofs = "1", .parameters = "1",
+                                     .work = "1", .special = "none"};
+  struct parameters {
+    std::vector<double> values;
+  } p;
+  explicit table_element(parameters q) : p(std::move(q)) {}
+  static parameters example() { return {{1.0}}; }
+  static table_element from_parameters(std::span<const double> v) { return table_element({{v.begin(), v.end()}}); }
+  int parameter_count() const { return static_cast<int>(p.values.size()); }
+  void evaluate(const local_input<table_element>&, local_output<table_element>& out, element_context&) const {
+    if (out.want_jacobian) out.K(0, 0) = 1.0;
+  }
+};
+
+}  // namespace
+
+TEST_SUITE("core/model") {
+  TEST_CASE("an element with ENT = 1 gets a hidden internal DOF allocated by the model") {
+    model<maxwell, point_mass> m;
+    const auto x = m.add_dof("x");
+    const int before = m.dof_count();
+    const auto r = m.add<maxwell>("mx", {2.0, 3.0}, x);
+    CHECK(m.dof_count() == before + 1);
+    CHECK(m.dof_of(r, 0) == x);
+    CHECK(m.dof_of(r, 1).index == before);
+    CHECK(m.dof_name(before) == "mx.internal1");
+  }
+
+  TEST_CASE("a Maxwell element held at a constant stretch relaxes as k u0 exp(-k t / c)") {
+    // Exact: the internal point obeys c vi = k (u0 - ui), ui(0) = 0, so the force
+    // k (u0 - ui) = k u0 exp(-k t / c). Newmark average acceleration on this
+    // first-order equation is the trapezoidal rule: relative error ~ (k h / c)^2 t k / (12 c).
+    model<maxwell, displacement_source> m;
+    const auto x = m.add_dof("x");
+    const double k = 10, c = 2, u0 = 0.1;
+    m.add<maxwell>("mx", {k, c}, x);
+    m.add<displacement_source>("hold", {.amplitude = 0, .frequency = 0, .phase_deg = 0, .offset = u0}, x);
+    simulation sim(m, newmark{});
+    double worst = 0;
+    sim.on_output([&](const auto& s) {
+      const double exact = k * u0 * std::exp(-k * s.time() / c);
+      worst = std::max(worst, std::abs(s.get_model().work("mx")[0] - exact));
+    });
+    sim.run({.end = 1.0, .out = 0.01, .smax = 1e-3, .newton = {.dabsu = 1e-12, .drltu = 0, .dabsi = 1e-12, .drlti = 0}});
+    // bound: k u0 * (k h / c)^2 / 12 * (k t / c) e^{-k t / c} <= 1 * 2.5e-5 / 12 * 0.37 ~ 8e-7
+    CHECK(worst < 1e-6);
+    // The reaction of the source equals the Maxwell force (W(1) of XSRC).
+    CHECK(m.work("hold")[0] == doctest::Approx(m.work("mx")[0]).epsilon(1e-9));
+  }
+
+  TEST_CASE("variable parameter counts follow VPR=11 and size state and work by STP and WRP") {
+    model<table_element> m;
+    const auto x = m.add_dof();
+    const std::array<dof, 1> d{x};
+    const std::vector<double> five{1, 2, 3, 4, 5};
+    const auto r = m.add_flat<table_element>("t5", d, five);
+    CHECK(m.instance(r).npar == 5);
+    CHECK(m.instance(r).state_size == 1 + 4 * 1);
+    CHECK(m.instance(r).work_size == 1 + 4 * 2);
+    CHECK(m.work("t5").size() == 9);
+    const std::vector<double> four{1, 2, 3, 4};
+    try {
+      m.add_flat<table_element>("t4", d, four);
+      FAIL("an even count must be refused");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::parameter_count);
+      CHECK(e.instance() == "t4");
+      CHECK(e.element_type() == "TAB");
+      CHECK(std::string(e.what()).find("odd") != std::string::npos);
+    }
+  }
+
+  TEST_CASE("elements are found by instance name and by catalog name") {
+    library_model m;
+    const auto d = m.add_dofs(4);
+    const std::vector<double> par{0, 0, 1, 0, 100};
+    const auto loc = m.add_by_name("LINKD", "link", d, par);
+    CHECK(m.type_name(loc) == "LINKD");
+    CHECK(m.find("link").has_value());
+    CHECK_FALSE(m.find("nothing").has_value());
+    CHECK(m.work("link").size() == 3);
+    CHECK_THROWS_AS(m.work("nothing"), error);
+    try {
+      m.add_by_name("LINKX", "bad", d, par);
+      FAIL("unknown catalog name must be refused");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::invalid_model);
+      CHECK(std::string(e.what()).find("LINKX") != std::string::npos);
+    }
+  }
+
+  TEST_CASE("a DOF index outside the model is refused with the connection number") {
+    model<point_mass> m;
+    try {
+      m.add<point_mass>("m", {1.0}, dof{7});
+      FAIL("must throw");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::invalid_model);
+      CHECK(e.instance() == "m");
+      CHECK(std::string(e.what()).find("DOF 7 does not exist") != std::string::npos);
+    }
+  }
+}
