@@ -14,7 +14,10 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
+#include <istream>
+#include <ostream>
 #include <limits>
 #include <optional>
 #include <span>
@@ -183,6 +186,124 @@ class simulation<model<Es...>, Scheme, Solver> {
   /// The scheme.
   const Scheme& scheme() const noexcept { return scheme_; }
 
+
+  // ---- checkpoint and restart --------------------------------------------------
+  /// A fingerprint of the model's topology: DOF count, element types, instance
+  /// names, connections, parameter counts and vector sizes (FNV-1a, 64 bit).
+  std::uint64_t model_fingerprint() const {
+    std::uint64_t h = 1469598103934665603ull;
+    auto mix = [&h](const void* p, std::size_t n) {
+      const auto* b = static_cast<const unsigned char*>(p);
+      for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+    };
+    const int nd = m_.dof_count();
+    mix(&nd, sizeof nd);
+    m_.for_each_instances([&](const auto& vec) {
+      for (const auto& in : vec) {
+        using E = std::remove_cvref_t<decltype(in.element)>;
+        mix(E::passport.name.data(), E::passport.name.size());
+        mix(in.name.data(), in.name.size());
+        mix(in.dofs.data(), sizeof(int) * in.dofs.size());
+        mix(&in.npar, sizeof in.npar);
+        mix(&in.work_size, sizeof in.work_size);
+        mix(&in.state_size, sizeof in.state_size);
+      }
+    });
+    return h;
+  }
+
+  /// Writes a checkpoint: time, potentials of all DOFs, the nominal step, the
+  /// statistics and every element's work and state vectors (binary, with the
+  /// model fingerprint). Throws invalid_option before the zero step.
+  void save_checkpoint(std::ostream& os) const {
+    if (!started_) throw error(error_code::invalid_option, "no checkpoint before the first stage has run");
+    os.write(checkpoint_magic, sizeof checkpoint_magic);
+    put(os, model_fingerprint());
+    put(os, t_);
+    put(os, h_nominal_);
+    put(os, static_cast<std::int64_t>(successes_));
+    put(os, stats_);
+    put_vec(os, s_.u);
+    put_vec(os, s_.v);
+    put_vec(os, s_.a);
+    put_vec(os, m_.work_pool());
+    put_vec(os, m_.old_state_pool());
+    put_vec(os, m_.new_state_pool());
+    if (!os) throw error(error_code::io_error, "cannot write the checkpoint");
+  }
+  /// Restores a checkpoint written by save_checkpoint() for the same model (the
+  /// parameters may differ: $REPLACE). The next run() continues from it exactly
+  /// as the uninterrupted run would; the zero step is not repeated. A checkpoint
+  /// of a different model, or a damaged one, is refused (io_error).
+  void load_checkpoint(std::istream& is) {
+    char magic[sizeof checkpoint_magic];
+    is.read(magic, sizeof magic);
+    if (!is || std::string_view(magic, sizeof magic) != std::string_view(checkpoint_magic, sizeof magic))
+      throw error(error_code::io_error, "not a pradis checkpoint");
+    std::uint64_t fp = 0;
+    get(is, fp);
+    if (fp != model_fingerprint())
+      throw error(error_code::io_error,
+                  "the checkpoint belongs to a different model (its DOFs, elements or connections differ)");
+    double t = 0, h = 0;
+    std::int64_t succ = 0;
+    run_statistics st;
+    get(is, t);
+    get(is, h);
+    get(is, succ);
+    get(is, st);
+    const int nd = m_.dof_count();
+    global_state g;
+    g.resize(nd);
+    get_vec(is, g.u);
+    get_vec(is, g.v);
+    get_vec(is, g.a);
+    std::vector<double> w(m_.work_pool().size()), os(m_.old_state_pool().size()), ns(m_.new_state_pool().size());
+    get_vec(is, w);
+    get_vec(is, os);
+    get_vec(is, ns);
+    if (!is) throw error(error_code::io_error, "the checkpoint is truncated");
+    detect_sources();
+    s_ = g;
+    build();
+    t_ = t;
+    h_nominal_ = h;
+    successes_ = static_cast<int>(succ);
+    stats_ = st;
+    m_.work_pool() = std::move(w);
+    m_.old_state_pool() = std::move(os);
+    m_.new_state_pool() = std::move(ns);
+    started_ = true;
+  }
+
+ private:
+  static constexpr char checkpoint_magic[8] = {'P', 'R', 'A', 'D', 'C', 'K', '0', '1'};
+  template <class T>
+  static void put(std::ostream& os, const T& x) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    os.write(reinterpret_cast<const char*>(&x), sizeof x);
+  }
+  template <class T>
+  static void get(std::istream& is, T& x) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    is.read(reinterpret_cast<char*>(&x), sizeof x);
+  }
+  template <class V>
+  static void put_vec(std::ostream& os, const V& v) {
+    const auto n = static_cast<std::uint64_t>(v.size());
+    put(os, n);
+    os.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(n * sizeof(double)));
+  }
+  template <class V>
+  static void get_vec(std::istream& is, V& v) {
+    std::uint64_t n = 0;
+    get(is, n);
+    if (!is || n != static_cast<std::uint64_t>(v.size()))
+      throw error(error_code::io_error, "the checkpoint does not match the model's sizes");
+    is.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(double)));
+  }
+
+ public:
  private:
   static std::string num(double x) {
     std::ostringstream os;
@@ -243,26 +364,7 @@ class simulation<model<Es...>, Scheme, Solver> {
   void zero_step() {
     const int nd = m_.dof_count();
     s_.resize(nd);
-    prescribed_.assign(static_cast<std::size_t>(nd), 0);
-    prescribed_[0] = 1;
-    std::vector<std::string> driver(static_cast<std::size_t>(nd));
-    driver[0] = "the ground";
-    // Sources that prescribe motion take their DOF out of the unknowns.
-    for_each_instance([&](auto& in) {
-      using E = std::remove_cvref_t<decltype(in.element)>;
-      if constexpr (PrescribesMotion<E>) {
-        const auto d = static_cast<std::size_t>(in.dofs[0]);
-        if (prescribed_[d]) {
-          error e(error_code::conflicting_initial,
-                  "DOF '" + m_.dof_name(static_cast<int>(d)) + "' is already driven by " + driver[d],
-                  std::string(E::passport.name), in.name, static_cast<long>(d));
-          log_.write(e);
-          throw e;
-        }
-        prescribed_[d] = 1;
-        driver[d] = std::string(E::passport.name) + " '" + in.name + "'";
-      }
-    });
+    std::vector<std::string> driver = detect_sources();
     new_integration();
     // Initial conditions (zero step), with conflict detection (code 90).
     std::vector<std::string> set_u(static_cast<std::size_t>(nd)), set_v(set_u);
@@ -288,6 +390,33 @@ class simulation<model<Es...>, Scheme, Solver> {
     evaluate({0, 0, 0}, 0.0, false);
     commit();
     notify();
+  }
+
+  /// Marks the ground and the DOFs driven by kinematic sources as prescribed;
+  /// two sources on one DOF (or a source on the ground) is code 90.
+  std::vector<std::string> detect_sources() {
+    const int nd = m_.dof_count();
+    prescribed_.assign(static_cast<std::size_t>(nd), 0);
+    prescribed_[0] = 1;
+    std::vector<std::string> driver(static_cast<std::size_t>(nd));
+    driver[0] = "the ground";
+    // Sources that prescribe motion take their DOF out of the unknowns.
+    for_each_instance([&](auto& in) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (PrescribesMotion<E>) {
+        const auto d = static_cast<std::size_t>(in.dofs[0]);
+        if (prescribed_[d]) {
+          error e(error_code::conflicting_initial,
+                  "DOF '" + m_.dof_name(static_cast<int>(d)) + "' is already driven by " + driver[d],
+                  std::string(E::passport.name), in.name, static_cast<long>(d));
+          log_.write(e);
+          throw e;
+        }
+        prescribed_[d] = 1;
+        driver[d] = std::string(E::passport.name) + " '" + in.name + "'";
+      }
+    });
+    return driver;
   }
 
   void apply_initial(element_context& ctx, std::size_t d, double value, Eigen::VectorXd& target,

@@ -1,0 +1,113 @@
+// Checkpoint and restart: a run interrupted at a stage boundary, saved, loaded
+// into a freshly built copy of the model and continued reproduces the
+// uninterrupted run bit for bit; a checkpoint of another model or a truncated
+// one is refused with a clear message.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "pradis/elements/library.hpp"
+#include "pradis/integrators/simulation.hpp"
+
+using namespace pradis;
+using namespace pradis::elements;
+
+namespace {
+using two_body_model = model<planar_inertia, planar_link, constant_force, sine_force>;
+void build(two_body_model& m, double k = 5e3) {
+  const auto d = m.add_dofs(6, "DOF ");
+  m.add<planar_inertia>("Body 1", {.m = 1.0, .j = 0.1}, d[0], d[1], d[2]);
+  m.add<planar_inertia>("Body 2", {.m = 2.0, .j = 0.1}, d[3], d[4], d[5]);
+  m.add<planar_link>("Connection", {1, 1, 2, 2, k}, d[0], d[1], d[3], d[4]);
+  m.add<constant_force>("Force", {.force = -1e3}, d[4]);
+  m.add<sine_force>("Shake", {.amplitude = 50, .frequency = 3, .phase_deg = 0, .offset = 0}, d[3]);
+}
+run_options stage(double end) {
+  return {.end = end, .smax = 1e-3, .newton = {.dabsu = 1e-9, .drltu = 1e-12, .dabsi = 1e-6, .drlti = 1e-12}};
+}
+}  // namespace
+
+TEST_SUITE("core/checkpoint") {
+  TEST_CASE("a restarted run reproduces the uninterrupted run bit for bit") {
+    two_body_model a;
+    build(a);
+    simulation sa(a, stoermer{});
+    sa.run(stage(0.25));
+    std::stringstream cp;
+    sa.save_checkpoint(cp);
+    sa.run(stage(0.5));
+
+    two_body_model b;
+    build(b);
+    simulation sb(b, stoermer{});
+    sb.load_checkpoint(cp);
+    CHECK(sb.time() == 0.25);
+    sb.run(stage(0.5));
+
+    CHECK(sa.time() == sb.time());
+    CHECK(sa.statistics().steps == sb.statistics().steps);
+    int mismatches = 0;
+    for (int d = 0; d < a.dof_count(); ++d)
+      mismatches += (sa.state().u(d) != sb.state().u(d)) + (sa.state().v(d) != sb.state().v(d)) +
+                    (sa.state().a(d) != sb.state().a(d));
+    CHECK(mismatches == 0);
+    CHECK(a.work_pool() == b.work_pool());
+  }
+
+  TEST_CASE("a restart may change parameters ($REPLACE) and continues from the saved state") {
+    two_body_model a;
+    build(a);
+    simulation sa(a, stoermer{});
+    sa.run(stage(0.25));
+    std::stringstream cp;
+    sa.save_checkpoint(cp);
+    two_body_model b;
+    build(b, 1e4);  // stiffer link, same topology
+    simulation sb(b, stoermer{});
+    sb.load_checkpoint(cp);
+    sb.run(stage(0.5));
+    CHECK(b.work("Connection")[2] == doctest::Approx(1e4 * (b.work("Connection")[1] - std::sqrt(2.0))));
+  }
+
+  TEST_CASE("a checkpoint of a different model is refused") {
+    two_body_model a;
+    build(a);
+    simulation sa(a, stoermer{});
+    sa.run(stage(0.25));
+    std::stringstream cp;
+    sa.save_checkpoint(cp);
+    two_body_model b;
+    build(b);
+    b.add_dof("extra");
+    simulation sb(b, stoermer{});
+    try {
+      sb.load_checkpoint(cp);
+      FAIL("must refuse");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::io_error);
+      CHECK(std::string(e.what()).find("different model") != std::string::npos);
+    }
+  }
+
+  TEST_CASE("a truncated checkpoint or another file is refused") {
+    two_body_model a;
+    build(a);
+    simulation sa(a, stoermer{});
+    sa.run(stage(0.25));
+    std::stringstream cp;
+    sa.save_checkpoint(cp);
+    const std::string full = cp.str();
+    two_body_model b;
+    build(b);
+    simulation sb(b, stoermer{});
+    std::stringstream cut(full.substr(0, full.size() / 2));
+    CHECK_THROWS_WITH_AS(sb.load_checkpoint(cut), doctest::Contains("checkpoint"), error);
+    std::stringstream junk("hello world, not a checkpoint");
+    CHECK_THROWS_WITH_AS(sb.load_checkpoint(junk), doctest::Contains("not a pradis checkpoint"), error);
+    simulation sc(b, stoermer{});
+    std::stringstream out;
+    CHECK_THROWS_AS(sc.save_checkpoint(out), error);  // nothing to save before the first stage
+  }
+}
