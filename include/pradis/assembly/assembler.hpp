@@ -31,12 +31,15 @@ struct jacobian_coefficients {
 };
 
 /// Global potentials of all DOFs (ground and prescribed DOFs included).
+/// `p` is the integrator's pseudo-acceleration (equal to `a` for Newmark and
+/// Stoermer); elements never see it.
 struct global_state {
-  Eigen::VectorXd u, v, a;
+  Eigen::VectorXd u, v, a, p;
   void resize(int n) {
     u.setZero(n);
     v.setZero(n);
     a.setZero(n);
+    p.setZero(n);
   }
 };
 

@@ -1,17 +1,21 @@
 #pragma once
 /// \file
-/// One-step integration schemes of the Newmark family, as policies of
-/// pradis::simulation: PRADIS's Stoermer scheme (SHTERM) and Newmark.
+/// One-step integration schemes of the Newmark / alpha family, as policies of
+/// pradis::simulation: PRADIS's Stoermer scheme (SHTERM), Newmark, HHT-alpha
+/// and generalized-alpha.
 ///
-/// With step h, previous (u0, v0, a0) and the Newton unknown v (the velocity,
-/// PRADIS's default FLAG=2):
-///     a = (v - v0 - h (1 - gamma) a0) / (gamma h)
-///     u = u0 + h v0 + h^2 ((1/2 - beta) a0 + beta a)
-/// so du/dv = beta h / gamma, da/dv = 1 / (gamma h), and the Newton matrix is
-///     J = (beta h / gamma) K + C + (1 / (gamma h)) M.
-/// Stoermer is beta = 1/2, gamma = 1 (J = (h/2) K + C + (1/h) M, first order,
-/// dissipative); average-acceleration Newmark is beta = 1/4, gamma = 1/2 (second
-/// order, no algorithmic damping).
+/// All are written in the form that suits an implicit system F(u, v, a, t) = 0
+/// (the residual is evaluated at t_{n+1} with the true acceleration; the
+/// numerical dissipation comes from a pseudo-acceleration p with p_0 = a_0):
+///     (1 - alpha_m) p_{n+1} + alpha_m p_n = (1 - alpha_f) a_{n+1} + alpha_f a_n
+///     u_{n+1} = u_n + h v_n + h^2 ((1/2 - beta) p_n + beta p_{n+1})
+///     v_{n+1} = v_n + h ((1 - gamma) p_n + gamma p_{n+1})
+/// For linear problems it has the amplification matrix of the classical
+/// alpha-weighted form. With alpha_m = alpha_f = 0 it is Newmark (p = a).
+///
+/// The Newton unknown is the velocity v (PRADIS's default FLAG=2), so
+///     du/dv = beta h / gamma,  da/dv = (1 - alpha_m) / ((1 - alpha_f) gamma h)
+/// and the Newton matrix is J = cu K + C + ca M with those factors.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -29,37 +33,56 @@ struct newmark_parameters {
   double gamma = 0.5;   ///< velocity weight, 1/2 <= gamma <= 1
 };
 
-/// Newmark family with velocity as the Newton unknown.
-class newmark {
+/// The four parameters of the alpha family.
+struct alpha_parameters {
+  double alpha_m = 0, alpha_f = 0, beta = 0.25, gamma = 0.5;
+};
+
+/// Common implementation of the alpha family with velocity as the Newton unknown.
+class alpha_scheme {
+ public:
+  /// The scheme's parameters.
+  const alpha_parameters& coefficients_set() const noexcept { return p_; }
+  /// Jacobian coefficients for the velocity unknown.
+  jacobian_coefficients coefficients(double h) const noexcept {
+    return {p_.beta * h / p_.gamma, 1.0, (1.0 - p_.alpha_m) / ((1.0 - p_.alpha_f) * p_.gamma * h)};
+  }
+  /// Predictor of the velocity (PRADIS: v_p = v0 + h a0; here with the pseudo-acceleration).
+  double predict(double, double v0, double, double p0, double h) const noexcept { return v0 + h * p0; }
+  /// Displacement, acceleration and pseudo-acceleration that follow from the velocity v.
+  void complete(double u0, double v0, double a0, double p0, double h, double v, double& u, double& a,
+                double& p) const noexcept {
+    p = (v - v0 - h * (1.0 - p_.gamma) * p0) / (p_.gamma * h);
+    u = u0 + h * v0 + h * h * ((0.5 - p_.beta) * p0 + p_.beta * p);
+    if (p_.alpha_m == 0.0 && p_.alpha_f == 0.0)
+      a = p;
+    else
+      a = ((1.0 - p_.alpha_m) * p + p_.alpha_m * p0 - p_.alpha_f * a0) / (1.0 - p_.alpha_f);
+  }
+
+ protected:
+  alpha_parameters p_{};
+};
+
+/// Newmark family (alpha_m = alpha_f = 0).
+class newmark : public alpha_scheme {
  public:
   static constexpr std::string_view name = "NEWMARK";
   newmark() = default;
   /// Throws invalid_option unless 0 < beta <= 1/2 and 1/2 <= gamma <= 1.
   /// The scheme is unconditionally stable for linear problems when
   /// 2 beta >= gamma; with 2 beta < gamma it is only conditionally stable.
-  explicit newmark(newmark_parameters p) : p_(p) {
-    if (!(p.gamma >= 0.5 && p.gamma <= 1.0))
+  explicit newmark(newmark_parameters q) {
+    if (!(q.gamma >= 0.5 && q.gamma <= 1.0))
       throw error(error_code::invalid_option,
-                  "NEWMARK gamma = " + std::to_string(p.gamma) + " is outside its valid range [0.5, 1]");
-    if (!(p.beta > 0.0 && p.beta <= 0.5))
+                  "NEWMARK gamma = " + std::to_string(q.gamma) + " is outside its valid range [0.5, 1]");
+    if (!(q.beta > 0.0 && q.beta <= 0.5))
       throw error(error_code::invalid_option,
-                  "NEWMARK beta = " + std::to_string(p.beta) + " is outside its valid range (0, 0.5]");
+                  "NEWMARK beta = " + std::to_string(q.beta) + " is outside its valid range (0, 0.5]");
+    p_ = {0, 0, q.beta, q.gamma};
   }
-  const newmark_parameters& parameters() const noexcept { return p_; }
-  /// Jacobian coefficients for the velocity unknown.
-  jacobian_coefficients coefficients(double h) const noexcept {
-    return {p_.beta * h / p_.gamma, 1.0, 1.0 / (p_.gamma * h)};
-  }
-  /// Predictor of the velocity (PRADIS: v_p = v0 + h a0).
-  double predict(double, double v0, double a0, double h) const noexcept { return v0 + h * a0; }
-  /// Displacement and acceleration that follow from the velocity v.
-  void complete(double u0, double v0, double a0, double h, double v, double& u, double& a) const noexcept {
-    a = (v - v0 - h * (1.0 - p_.gamma) * a0) / (p_.gamma * h);
-    u = u0 + h * v0 + h * h * ((0.5 - p_.beta) * a0 + p_.beta * a);
-  }
-
- protected:
-  newmark_parameters p_{};
+  /// beta and gamma.
+  newmark_parameters parameters() const noexcept { return {p_.beta, p_.gamma}; }
 };
 
 /// PRADIS's Stoermer scheme (SHTERM, SCHEME=0): Newmark with beta = 1/2, gamma = 1.
@@ -67,7 +90,50 @@ class newmark {
 class stoermer : public newmark {
  public:
   static constexpr std::string_view name = "SHTERM";
-  stoermer() { p_ = {0.5, 1.0}; }
+  stoermer() : newmark(newmark_parameters{0.5, 1.0}) {}
+};
+
+/// HHT-alpha (Hilber-Hughes-Taylor), alpha in [-1/3, 0]: alpha_m = 0,
+/// alpha_f = -alpha, gamma = (1 - 2 alpha) / 2, beta = (1 - alpha)^2 / 4.
+/// Second order; spectral radius at infinity (1 + alpha) / (1 - alpha).
+class hht : public alpha_scheme {
+ public:
+  static constexpr std::string_view name = "HHT";
+  /// Default alpha = -0.05.
+  hht() : hht(-0.05) {}
+  /// Throws invalid_option unless -1/3 <= alpha <= 0.
+  explicit hht(double alpha) : alpha_(alpha) {
+    if (!(alpha >= -1.0 / 3.0 - 1e-15 && alpha <= 0.0))
+      throw error(error_code::invalid_option,
+                  "HHT alpha = " + std::to_string(alpha) + " is outside its valid range [-1/3, 0]");
+    p_ = {0.0, -alpha, (1.0 - alpha) * (1.0 - alpha) / 4.0, (1.0 - 2.0 * alpha) / 2.0};
+  }
+  double alpha() const noexcept { return alpha_; }
+
+ private:
+  double alpha_;
+};
+
+/// Generalized-alpha (Chung-Hulbert) set by the spectral radius at infinity
+/// rho_inf in [0, 1]: alpha_m = (2 rho - 1) / (rho + 1), alpha_f = rho / (rho + 1),
+/// gamma = 1/2 - alpha_m + alpha_f, beta = (1 - alpha_m + alpha_f)^2 / 4.
+class generalized_alpha : public alpha_scheme {
+ public:
+  static constexpr std::string_view name = "GALPHA";
+  /// Default rho_inf = 0.8.
+  generalized_alpha() : generalized_alpha(0.8) {}
+  /// Throws invalid_option unless 0 <= rho_inf <= 1.
+  explicit generalized_alpha(double rho_inf) : rho_(rho_inf) {
+    if (!(rho_inf >= 0.0 && rho_inf <= 1.0))
+      throw error(error_code::invalid_option,
+                  "generalized-alpha rho_inf = " + std::to_string(rho_inf) + " is outside its valid range [0, 1]");
+    const double am = (2 * rho_inf - 1) / (rho_inf + 1), af = rho_inf / (rho_inf + 1);
+    p_ = {am, af, (1 - am + af) * (1 - am + af) / 4, 0.5 - am + af};
+  }
+  double rho_inf() const noexcept { return rho_; }
+
+ private:
+  double rho_;
 };
 
 /// What the simulation needs from an integration scheme.
@@ -75,8 +141,8 @@ template <class S>
 concept Integrator = requires(const S s, double x, double& r) {
   { S::name } -> std::convertible_to<std::string_view>;
   { s.coefficients(x) } -> std::same_as<jacobian_coefficients>;
-  { s.predict(x, x, x, x) } -> std::same_as<double>;
-  s.complete(x, x, x, x, x, r, r);
+  { s.predict(x, x, x, x, x) } -> std::same_as<double>;
+  s.complete(x, x, x, x, x, x, r, r, r);
 };
 
 }  // namespace pradis

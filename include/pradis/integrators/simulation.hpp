@@ -226,6 +226,7 @@ class simulation<model<Es...>, Scheme, Solver> {
     put_vec(os, s_.u);
     put_vec(os, s_.v);
     put_vec(os, s_.a);
+    put_vec(os, s_.p);
     put_vec(os, m_.work_pool());
     put_vec(os, m_.old_state_pool());
     put_vec(os, m_.new_state_pool());
@@ -258,6 +259,7 @@ class simulation<model<Es...>, Scheme, Solver> {
     get_vec(is, g.u);
     get_vec(is, g.v);
     get_vec(is, g.a);
+    get_vec(is, g.p);
     std::vector<double> w(m_.work_pool().size()), os(m_.old_state_pool().size()), ns(m_.new_state_pool().size());
     get_vec(is, w);
     get_vec(is, os);
@@ -386,6 +388,7 @@ class simulation<model<Es...>, Scheme, Solver> {
     build();
     started_ = true;
     initial_acceleration();
+    s_.p = s_.a;  // the pseudo-acceleration starts at the consistent acceleration
     // Flows and work vectors at t0 (no Jacobian needed), then accept the zero step.
     evaluate({0, 0, 0}, 0.0, false);
     commit();
@@ -445,6 +448,7 @@ class simulation<model<Es...>, Scheme, Solver> {
         s_.u(d) = k.u;
         s_.v(d) = k.v;
         s_.a(d) = k.a;
+        s_.p(d) = k.a;
       }
     });
   }
@@ -459,6 +463,7 @@ class simulation<model<Es...>, Scheme, Solver> {
       g.u.head(old) = s_.u;
       g.v.head(old) = s_.v;
       g.a.head(old) = s_.a;
+      g.p.head(old) = s_.p;
       s_ = g;
     }
     asm_.build(m_, prescribed_);
@@ -577,8 +582,8 @@ class simulation<model<Es...>, Scheme, Solver> {
     apply_sources(t_);
     for (int i = 0; i < ne; ++i) {
       const auto d = asm_.dof_of(i);
-      s_.v(d) = scheme_.predict(s0_.u(d), s0_.v(d), s0_.a(d), h);
-      scheme_.complete(s0_.u(d), s0_.v(d), s0_.a(d), h, s_.v(d), s_.u(d), s_.a(d));
+      s_.v(d) = scheme_.predict(s0_.u(d), s0_.v(d), s0_.a(d), s0_.p(d), h);
+      scheme_.complete(s0_.u(d), s0_.v(d), s0_.a(d), s0_.p(d), h, s_.v(d), s_.u(d), s_.a(d), s_.p(d));
     }
     const jacobian_coefficients c = scheme_.coefficients(h);
     bool correction_ok = false;
@@ -613,7 +618,7 @@ class simulation<model<Es...>, Scheme, Solver> {
           finite = finite && std::isfinite(dv);
           s_.v(d) += dv;
           correction_ok = correction_ok && std::abs(dv) <= nw.dabsu + nw.drltu * std::abs(s_.v(d));
-          scheme_.complete(s0_.u(d), s0_.v(d), s0_.a(d), h, s_.v(d), s_.u(d), s_.a(d));
+          scheme_.complete(s0_.u(d), s0_.v(d), s0_.a(d), s0_.p(d), h, s_.v(d), s_.u(d), s_.a(d), s_.p(d));
         }
         if (!finite) break;
       }
