@@ -53,7 +53,18 @@ struct run_options {
   double smin = 1e-11;       ///< SMIN: minimum step; below it the run fails
   bool ignore = false;       ///< IGNORE: ignore steps recommended by elements (STEPMD)
   newton_options newton{};   ///< Newton tolerances
+  /// Error-controlled step size. false: every step is SMAX (cut only when Newton
+  /// fails). true: PRADIS's velocity-based local error estimate and three-branch
+  /// step rule; the first stage starts with steps of SMIN and grows.
+  bool error_control = false;
+  double dabsx = 0.1;        ///< DABSX: absolute tolerance of the local error (velocity units)
+  double drltx = 1e-3;       ///< DRLTX: relative tolerance of the local error, times |v|
+  bool predict = false;      ///< PREDICT: linear prediction of the acceleration in the error predictor
+  double control = 0.0;      ///< CONTROL: no error-driven step reduction below this step (0: none)
 };
+
+/// What one attempted step ended in.
+enum class step_outcome { accepted, failed, error_rejected };
 
 /// Run statistics, cumulative over the stages of a simulation.
 struct run_statistics {
@@ -64,6 +75,8 @@ struct run_statistics {
   long evaluations = 0;        ///< full model evaluations
   int last_iterations = 0;     ///< Newton iterations of the last accepted step
   double last_step = 0;        ///< size of the last accepted step
+  long error_rejections = 0;   ///< steps redone because the local error exceeded the tolerance
+  int limiting_dof = -1;       ///< DOF whose local error set the last step (error control), or -1
   /// Difference (per-stage figures).
   friend run_statistics operator-(run_statistics a, const run_statistics& b) {
     a.steps -= b.steps;
@@ -71,6 +84,7 @@ struct run_statistics {
     a.newton_iterations -= b.newton_iterations;
     a.factorizations -= b.factorizations;
     a.evaluations -= b.evaluations;
+    a.error_rejections -= b.error_rejections;
     return a;
   }
 };
@@ -111,6 +125,7 @@ class simulation<model<Es...>, Scheme, Solver> {
     long out_index = 1;
     double next_out = opt.out > 0 ? t_start + opt.out : opt.end;
     if (h_nominal_ <= 0 || h_nominal_ > opt.smax) h_nominal_ = opt.smax;
+    if (opt.error_control && stats_.steps == 0) h_nominal_ = opt.smin;  // PRADIS: start with steps of SMIN
     while (t_ < opt.end * (1 - 1e-14) - 1e-300) {
       double target = std::min(next_out, opt.end);
       double h = h_nominal_;
@@ -129,8 +144,18 @@ class simulation<model<Es...>, Scheme, Solver> {
         log_.write(e);
         throw e;
       }
-      if (step(h)) {
-        if (!clipped || h >= h_nominal_) grow();
+      const step_outcome outcome = step(h);
+      if (outcome == step_outcome::error_rejected) {
+        ++stats_.rejected_steps;
+        ++stats_.error_rejections;
+        h_nominal_ = h_error_;
+        continue;
+      }
+      if (outcome == step_outcome::accepted) {
+        if (opt.error_control)
+          h_nominal_ = clipped ? std::max(h_nominal_, h_error_) : h_error_;
+        else if (!clipped || h >= h_nominal_)
+          grow();
         if (clipped || opt.out <= 0) {
           if (opt.out > 0) {
             ++out_index;
@@ -227,6 +252,8 @@ class simulation<model<Es...>, Scheme, Solver> {
     put_vec(os, s_.v);
     put_vec(os, s_.a);
     put_vec(os, s_.p);
+    put(os, h_prev_);
+    put_vec(os, a_prev_);
     put_vec(os, m_.work_pool());
     put_vec(os, m_.old_state_pool());
     put_vec(os, m_.new_state_pool());
@@ -260,6 +287,10 @@ class simulation<model<Es...>, Scheme, Solver> {
     get_vec(is, g.v);
     get_vec(is, g.a);
     get_vec(is, g.p);
+    double hp = 0;
+    get(is, hp);
+    Eigen::VectorXd ap(nd);
+    get_vec(is, ap);
     std::vector<double> w(m_.work_pool().size()), os(m_.old_state_pool().size()), ns(m_.new_state_pool().size());
     get_vec(is, w);
     get_vec(is, os);
@@ -270,6 +301,8 @@ class simulation<model<Es...>, Scheme, Solver> {
     build();
     t_ = t;
     h_nominal_ = h;
+    h_prev_ = hp;
+    a_prev_ = ap;
     successes_ = static_cast<int>(succ);
     stats_ = st;
     m_.work_pool() = std::move(w);
@@ -333,6 +366,11 @@ class simulation<model<Es...>, Scheme, Solver> {
     if (n.dabsu + n.drltu <= 0 || n.dabsi + n.drlti <= 0)
       fail_option("Newton tolerances DABSU+DRLTU and DABSI+DRLTI must not both be zero");
     if (n.itr < 1) fail_option("ITR = " + std::to_string(n.itr) + " must be >= 1");
+    if (bad(o.dabsx) || o.dabsx < 0) fail_option("DABSX = " + num(o.dabsx) + " must be >= 0");
+    if (bad(o.drltx) || o.drltx < 0) fail_option("DRLTX = " + num(o.drltx) + " must be >= 0");
+    if (o.error_control && !(o.dabsx + o.drltx > 0))
+      fail_option("error control needs DABSX + DRLTX > 0 (both are zero)");
+    if (bad(o.control) || o.control < 0) fail_option("CONTROL = " + num(o.control) + " must be >= 0");
   }
 
   // ---- element-level phases ---------------------------------------------------
@@ -389,6 +427,8 @@ class simulation<model<Es...>, Scheme, Solver> {
     started_ = true;
     initial_acceleration();
     s_.p = s_.a;  // the pseudo-acceleration starts at the consistent acceleration
+    a_prev_ = s_.a;
+    h_prev_ = 0;
     // Flows and work vectors at t0 (no Jacobian needed), then accept the zero step.
     evaluate({0, 0, 0}, 0.0, false);
     commit();
@@ -573,7 +613,7 @@ class simulation<model<Es...>, Scheme, Solver> {
 
   /// One step from t_ to t_ + h. Returns false (state restored) when Newton did
   /// not converge or an element reported a singular situation.
-  bool step(double h) {
+  step_outcome step(double h) {
     s0_ = s_;
     const double t0 = t_;
     const int ne = asm_.equations();
@@ -586,7 +626,7 @@ class simulation<model<Es...>, Scheme, Solver> {
       scheme_.complete(s0_.u(d), s0_.v(d), s0_.a(d), s0_.p(d), h, s_.v(d), s_.u(d), s_.a(d), s_.p(d));
     }
     const jacobian_coefficients c = scheme_.coefficients(h);
-    bool correction_ok = false;
+    bool correction_ok = false, roundoff = false;
     last_failure_.reset();
     try {
       for (int k = 0;; ++k) {
@@ -596,13 +636,23 @@ class simulation<model<Es...>, Scheme, Solver> {
           const auto d = asm_.dof_of(i);
           residual_ok = std::abs(asm_.residual()(d)) <= nw.dabsi + nw.drlti * asm_.abs_sum()(d);
         }
-        if (k > 0 && correction_ok && residual_ok && (!nw.second || k >= 2)) {
+        // Converged: both PRADIS tests pass; or the correction test passes and the
+        // last correction was at round-off level (the residual cannot get smaller
+        // in double precision: its floor is about |J| eps |v| once a = (v - v0)/(gamma h)).
+        if (k > 0 && correction_ok && (residual_ok || (k >= 2 && roundoff)) && (!nw.second || k >= 2)) {
+          if (opt_.error_control && !error_accepts(h)) {
+            s_ = s0_;
+            t_ = t0;
+            return step_outcome::error_rejected;
+          }
           stats_.last_iterations = k;
           stats_.last_step = h;
           ++stats_.steps;
           recommended_ = asm_.recommended_step();
+          a_prev_ = s0_.a;
+          h_prev_ = h;
           commit();
-          return true;
+          return step_outcome::accepted;
         }
         if (k >= nw.itr) break;
         for (int i = 0; i < ne; ++i) rhs_[static_cast<std::size_t>(i)] = -asm_.residual()(asm_.dof_of(i));
@@ -611,6 +661,7 @@ class simulation<model<Es...>, Scheme, Solver> {
         solver_.solve(rhs_);
         ++stats_.newton_iterations;
         correction_ok = true;
+        roundoff = true;
         bool finite = true;
         for (int i = 0; i < ne; ++i) {
           const auto d = asm_.dof_of(i);
@@ -618,6 +669,9 @@ class simulation<model<Es...>, Scheme, Solver> {
           finite = finite && std::isfinite(dv);
           s_.v(d) += dv;
           correction_ok = correction_ok && std::abs(dv) <= nw.dabsu + nw.drltu * std::abs(s_.v(d));
+          roundoff = roundoff && std::abs(dv) <= 64 * std::numeric_limits<double>::epsilon() *
+                                                     (std::abs(s_.v(d)) + std::abs(s0_.v(d)) +
+                                                      h * (std::abs(s_.a(d)) + std::abs(s0_.a(d))));
           scheme_.complete(s0_.u(d), s0_.v(d), s0_.a(d), s0_.p(d), h, s_.v(d), s_.u(d), s_.a(d), s_.p(d));
         }
         if (!finite) break;
@@ -628,6 +682,58 @@ class simulation<model<Es...>, Scheme, Solver> {
     }
     s_ = s0_;
     t_ = t0;
+    return step_outcome::failed;
+  }
+
+  /// Local error test of a converged step (PRADIS's velocity-based estimate).
+  /// First-order schemes (Stoermer, Newmark with gamma != 1/2): predictor
+  /// v_p = v_n + h a_n (PREDICT: with a linearly extrapolated), lp = |v_p - v|/2.
+  /// Second-order schemes: lp = h |beta - 1/6| |a_{n+1} - a_n|, the displacement
+  /// error estimate of the Newmark family per unit step (velocity units, O(h^2)
+  /// like PRADIS's). Per DOF lp <= DABSX + DRLTX |v|; r = min tolerance / lp;
+  /// next step c h r (r < 1/4), c h sqrt(r) (r <= 7), c h r^(1/4), c = 0.8.
+  /// Sets h_error_; returns false (redo with h_error_) when the test fails and
+  /// the step is above SMIN and CONTROL; throws step_too_small when the step
+  /// needed is below SMIN, naming the DOF and the time.
+  bool error_accepts(double h) {
+    const alpha_parameters& q = scheme_.coefficients_set();
+    const bool second = std::abs(q.gamma - 0.5 - (q.alpha_f - q.alpha_m)) < 1e-12;
+    double r = std::numeric_limits<double>::infinity(), worst_lp = 0, worst_tol = 0;
+    int worst = -1;
+    for (int i = 0; i < asm_.equations(); ++i) {
+      const auto d = asm_.dof_of(i);
+      double lp;
+      if (second) {
+        lp = h * std::abs(q.beta - 1.0 / 6.0) * std::abs(s_.a(d) - s0_.a(d));
+      } else {
+        double ap = s0_.a(d);
+        if (opt_.predict && h_prev_ > 0 && a_prev_.size() == s0_.a.size()) ap += (s0_.a(d) - a_prev_(d)) * h / h_prev_;
+        lp = 0.5 * std::abs(s0_.v(d) + h * ap - s_.v(d));
+      }
+      const double tol = opt_.dabsx + opt_.drltx * std::abs(s_.v(d));
+      if (lp > 0 && tol / lp < r) {
+        r = tol / lp;
+        worst = d;
+        worst_lp = lp;
+        worst_tol = tol;
+      }
+    }
+    constexpr double c = 0.8;
+    const double f = r < 0.25 ? r : (r <= 7.0 ? std::sqrt(r) : std::pow(r, 0.25));
+    h_error_ = std::min(std::isfinite(f) ? c * h * f : opt_.smax, opt_.smax);
+    stats_.limiting_dof = worst;
+    if (r >= 1.0) return true;
+    const double floor = std::max(opt_.smin, opt_.control);
+    if (h <= floor * (1 + 1e-12)) {
+      if (opt_.control > opt_.smin) return true;  // CONTROL: accept at the floor
+      error e(error_code::step_too_small,
+              "SMIN cannot reach the requested accuracy: local error " + num(worst_lp) + " above tolerance " +
+                  num(worst_tol) + " on DOF '" + m_.dof_name(worst) + "' at t = " + num(t_) + " with step " + num(h),
+              {}, {}, worst);
+      log_.write(e);
+      throw e;
+    }
+    h_error_ = std::max(h_error_, floor);
     return false;
   }
 
@@ -700,6 +806,9 @@ class simulation<model<Es...>, Scheme, Solver> {
   std::optional<error> last_failure_;
   double t_ = 0;
   double h_nominal_ = 0;
+  double h_error_ = 0;
+  double h_prev_ = 0;
+  Eigen::VectorXd a_prev_;
   double recommended_ = std::numeric_limits<double>::infinity();
   int successes_ = 0;
   bool started_ = false;
