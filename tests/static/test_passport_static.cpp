@@ -53,8 +53,9 @@ static_assert(odd3.work_size(3) == 2 && odd3.work_size(5) == 2 + 2 * 3);
 
 // The library's passports follow the manual's examples.
 using namespace pradis::elements;
+// Manual 3.6.6: EXT=4, PAR=5, WRK=3, ADR=1, IGN=23; pradis adds STR=2 (direction of the last accepted step).
 static_assert(planar_link::passport ==
-              passport{.name = "LINKD", .ext = 4, .par = 5, .wrk = 3, .adr = 1, .ign = 23});  // manual 3.6.6
+              passport{.name = "LINKD", .ext = 4, .par = 5, .str = 2, .wrk = 3, .adr = 1, .ign = 23});
 static_assert(eccentric_mass::passport == passport{.name = "MEKS", .ext = 3, .par = 3, .adr = 1, .ign = 0});
 static_assert(pradis::element_traits<planar_link>::has_k && !pradis::element_traits<planar_link>::has_c);
 static_assert(pradis::element_traits<planar_inertia>::has_m && !pradis::element_traits<planar_inertia>::has_k);

@@ -32,6 +32,21 @@ struct absent_block {
     static_assert(detail::dependent_false<A...>,
                   "pradis: this Jacobian block is absent: the element's passport (ADR/IGN) declares it zero");
   }
+  template <class... A>
+  void setZero(A...) const {
+    static_assert(detail::dependent_false<A...>,
+                  "pradis: this Jacobian block is absent: the element's passport (ADR/IGN) declares it zero");
+  }
+  template <class... A>
+  void diagonal(A...) const {
+    static_assert(detail::dependent_false<A...>,
+                  "pradis: this Jacobian block is absent: the element's passport (ADR/IGN) declares it zero");
+  }
+  template <class T>
+  friend void operator<<(const absent_block&, const T&) {
+    static_assert(detail::dependent_false<T>,
+                  "pradis: this Jacobian block is absent: the element's passport (ADR/IGN) declares it zero");
+  }
   static constexpr bool present = false;
 };
 

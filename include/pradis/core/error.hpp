@@ -3,11 +3,20 @@
 /// The one exception family of pradis: pradis::error, with a PRADIS-style error
 /// code, the element type and instance it concerns, and a plain message.
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
 namespace pradis {
+
+/// A number as text for messages: up to 10 significant digits, never rounded
+/// to zero (-2.5e-07, not -0.000000).
+inline std::string to_text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", x);
+  return buf;
+}
 
 /// Error codes. The numeric values 75, 90 and 100 are the codes the PRADIS element
 /// developer's manual assigns (singular situation, conflicting initial condition,

@@ -75,10 +75,10 @@ class newmark : public alpha_scheme {
   explicit newmark(newmark_parameters q) {
     if (!(q.gamma >= 0.5 && q.gamma <= 1.0))
       throw error(error_code::invalid_option,
-                  "NEWMARK gamma = " + std::to_string(q.gamma) + " is outside its valid range [0.5, 1]");
+                  "NEWMARK gamma = " + to_text(q.gamma) + " is outside its valid range [0.5, 1]");
     if (!(q.beta > 0.0 && q.beta <= 0.5))
       throw error(error_code::invalid_option,
-                  "NEWMARK beta = " + std::to_string(q.beta) + " is outside its valid range (0, 0.5]");
+                  "NEWMARK beta = " + to_text(q.beta) + " is outside its valid range (0, 0.5]");
     p_ = {0, 0, q.beta, q.gamma};
   }
   /// beta and gamma.
@@ -105,7 +105,7 @@ class hht : public alpha_scheme {
   explicit hht(double alpha) : alpha_(alpha) {
     if (!(alpha >= -1.0 / 3.0 - 1e-15 && alpha <= 0.0))
       throw error(error_code::invalid_option,
-                  "HHT alpha = " + std::to_string(alpha) + " is outside its valid range [-1/3, 0]");
+                  "HHT alpha = " + to_text(alpha) + " is outside its valid range [-1/3, 0]");
     p_ = {0.0, -alpha, (1.0 - alpha) * (1.0 - alpha) / 4.0, (1.0 - 2.0 * alpha) / 2.0};
   }
   double alpha() const noexcept { return alpha_; }
@@ -126,7 +126,7 @@ class generalized_alpha : public alpha_scheme {
   explicit generalized_alpha(double rho_inf) : rho_(rho_inf) {
     if (!(rho_inf >= 0.0 && rho_inf <= 1.0))
       throw error(error_code::invalid_option,
-                  "generalized-alpha rho_inf = " + std::to_string(rho_inf) + " is outside its valid range [0, 1]");
+                  "generalized-alpha rho_inf = " + to_text(rho_inf) + " is outside its valid range [0, 1]");
     const double am = (2 * rho_inf - 1) / (rho_inf + 1), af = rho_inf / (rho_inf + 1);
     p_ = {am, af, (1 - am + af) * (1 - am + af) / 4, 0.5 - am + af};
   }

@@ -89,7 +89,7 @@ struct run_statistics {
   }
 };
 
-template <class Model, Integrator Scheme = newmark, class Solver = linalg::sparse_lu<linalg::min_degree_ordering>>
+template <class Model, Integrator Scheme = newmark, class Solver = linalg::sparse_lu<linalg::automatic_ordering>>
 class simulation;
 
 /// Simulation of a model<Es...> with an integration scheme and a linear solver policy.
@@ -120,6 +120,10 @@ class simulation<model<Es...>, Scheme, Solver> {
     } else {
       if (!asm_.built_for(m_)) build();
       new_integration();
+      // Refresh flows, work vectors and the recommended step (STEPMD) with the
+      // stage's parameters, so the first step of the stage respects them.
+      evaluate({0, 0, 0}, 0.0, false);
+      recommended_ = asm_.recommended_step();
     }
     const double t_start = t_;
     long out_index = 1;
@@ -431,6 +435,7 @@ class simulation<model<Es...>, Scheme, Solver> {
     h_prev_ = 0;
     // Flows and work vectors at t0 (no Jacobian needed), then accept the zero step.
     evaluate({0, 0, 0}, 0.0, false);
+    recommended_ = asm_.recommended_step();
     commit();
     notify();
   }
@@ -605,8 +610,10 @@ class simulation<model<Es...>, Scheme, Solver> {
     }
   }
 
-  void evaluate(const jacobian_coefficients& c, double h, bool jac, int niter = 0) {
-    call_info info{t_, h, stats_.steps, niter, jac, &log_};
+  /// Evaluates the model. During step k (1-based) elements see NSTEP = k; at
+  /// the zero step and between steps they see the number of accepted steps.
+  void evaluate(const jacobian_coefficients& c, double h, bool jac, int niter = 0, bool in_step = false) {
+    call_info info{t_, h, stats_.steps + (in_step ? 1 : 0), niter, jac, &log_};
     ++stats_.evaluations;
     asm_.evaluate(m_, s_, c, info);
   }
@@ -630,7 +637,7 @@ class simulation<model<Es...>, Scheme, Solver> {
     last_failure_.reset();
     try {
       for (int k = 0;; ++k) {
-        evaluate(c, h, true, k);
+        evaluate(c, h, true, k, true);
         bool residual_ok = true;
         for (int i = 0; i < ne && residual_ok; ++i) {
           const auto d = asm_.dof_of(i);
@@ -720,10 +727,10 @@ class simulation<model<Es...>, Scheme, Solver> {
     }
     constexpr double c = 0.8;
     const double f = r < 0.25 ? r : (r <= 7.0 ? std::sqrt(r) : std::pow(r, 0.25));
-    h_error_ = std::min(std::isfinite(f) ? c * h * f : opt_.smax, opt_.smax);
+    const double floor = std::max(opt_.smin, opt_.control);
+    h_error_ = std::clamp(std::isfinite(f) ? c * h * f : opt_.smax, std::min(floor, opt_.smax), opt_.smax);
     stats_.limiting_dof = worst;
     if (r >= 1.0) return true;
-    const double floor = std::max(opt_.smin, opt_.control);
     if (h <= floor * (1 + 1e-12)) {
       if (opt_.control > opt_.smin) return true;  // CONTROL: accept at the floor
       error e(error_code::step_too_small,
@@ -733,7 +740,6 @@ class simulation<model<Es...>, Scheme, Solver> {
       log_.write(e);
       throw e;
     }
-    h_error_ = std::max(h_error_, floor);
     return false;
   }
 

@@ -1,7 +1,9 @@
 #pragma once
 /// \file
-/// Fill-reducing orderings for the sparse LU: the OrderingPolicy concept and the two
-/// policies pradis ships (natural_ordering, min_degree_ordering).
+/// Fill-reducing orderings for the sparse LU: the OrderingPolicy concept and the policies
+/// pradis ships, one per PRADIS renumbering level OPTIM 0..4 (natural_ordering,
+/// row_count_ordering, initial_fill_ordering, min_degree_ordering, min_fill_ordering), plus
+/// automatic_ordering (level by size) and optim_ordering (level chosen at run time).
 
 #include <concepts>
 #include <string_view>
@@ -25,10 +27,19 @@ concept OrderingPolicy = std::default_initializable<O> &&
 
 }  // namespace pradis::linalg
 
+#include "pradis/linalg/ordering/automatic.hpp"
+#include "pradis/linalg/ordering/initial_fill.hpp"
 #include "pradis/linalg/ordering/min_degree.hpp"
+#include "pradis/linalg/ordering/min_fill.hpp"
 #include "pradis/linalg/ordering/natural.hpp"
+#include "pradis/linalg/ordering/row_count.hpp"
 
 namespace pradis::linalg {
 static_assert(OrderingPolicy<natural_ordering>);
 static_assert(OrderingPolicy<min_degree_ordering>);
+static_assert(OrderingPolicy<row_count_ordering>);
+static_assert(OrderingPolicy<initial_fill_ordering>);
+static_assert(OrderingPolicy<min_fill_ordering>);
+static_assert(OrderingPolicy<automatic_ordering>);
+static_assert(OrderingPolicy<optim_ordering>);
 }  // namespace pradis::linalg

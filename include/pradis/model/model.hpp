@@ -59,9 +59,18 @@ struct instance_location {
 /// same type twice or two types with the same catalog name does not compile.
 template <class... Es>
 class model {
+  static consteval bool distinct_names() {
+    constexpr std::string_view names[] = {Es::passport.name...};
+    for (std::size_t i = 0; i < sizeof...(Es); ++i)
+      for (std::size_t j = i + 1; j < sizeof...(Es); ++j)
+        if (names[i] == names[j]) return false;
+    return true;
+  }
+
   static_assert(sizeof...(Es) > 0, "pradis: a model must list at least one element type");
   static_assert((check_element<Es>() && ...));
   static_assert(distinct_v<Es...>, "pradis: a model lists the same element type twice");
+  static_assert(distinct_names(), "pradis: two element types of a model have the same catalog name");
 
  public:
   /// The element types of this model.

@@ -66,7 +66,7 @@ struct sine_force {
     if (!std::isfinite(p.amplitude) || !std::isfinite(p.phase_deg) || !std::isfinite(p.offset))
       ctx.invalid_parameter("amplitude, phase and constant part must be finite");
     if (!(p.frequency >= 0) || !std::isfinite(p.frequency))
-      ctx.invalid_parameter("frequency f = " + std::to_string(p.frequency) + " must be finite and >= 0");
+      ctx.invalid_parameter("frequency f = " + to_text(p.frequency) + " must be finite and >= 0");
   }
   /// P(t).
   double force(double t) const {

@@ -2,6 +2,7 @@
 /// \file
 /// DAMPER: linear viscous damper between two DOFs.
 
+#include <cmath>
 #include <span>
 #include <string>
 
@@ -29,7 +30,7 @@ struct linear_damper {
   static parameters example() { return {3.0}; }
   static linear_damper from_parameters(std::span<const double> v) { return linear_damper({v[0]}); }
   void new_integration(element_context& ctx) const {
-    if (!(p.c >= 0)) ctx.invalid_parameter("damping coefficient c = " + std::to_string(p.c) + " must be >= 0");
+    if (!(p.c >= 0) || !std::isfinite(p.c)) ctx.invalid_parameter("damping coefficient c = " + to_text(p.c) + " must be finite and >= 0");
   }
   void evaluate(const local_input<linear_damper>& in, local_output<linear_damper>& out, element_context& ctx) const {
     const double f = p.c * (in.v(0) - in.v(1));

@@ -2,6 +2,7 @@
 /// \file
 /// SPRING: linear spring between two DOFs.
 
+#include <cmath>
 #include <span>
 #include <string>
 
@@ -29,7 +30,7 @@ struct linear_spring {
   static parameters example() { return {100.0}; }
   static linear_spring from_parameters(std::span<const double> v) { return linear_spring({v[0]}); }
   void new_integration(element_context& ctx) const {
-    if (!(p.k >= 0)) ctx.invalid_parameter("stiffness k = " + std::to_string(p.k) + " must be >= 0");
+    if (!(p.k >= 0) || !std::isfinite(p.k)) ctx.invalid_parameter("stiffness k = " + to_text(p.k) + " must be finite and >= 0");
   }
   void evaluate(const local_input<linear_spring>& in, local_output<linear_spring>& out, element_context& ctx) const {
     const double f = p.k * (in.u(0) - in.u(1));

@@ -2,6 +2,7 @@
 /// \file
 /// MASS: point mass on one translational DOF (or a rotary inertia on an angle DOF).
 
+#include <cmath>
 #include <span>
 #include <string>
 
@@ -28,7 +29,7 @@ struct point_mass {
   static parameters example() { return {2.0}; }
   static point_mass from_parameters(std::span<const double> v) { return point_mass({v[0]}); }
   void new_integration(element_context& ctx) const {
-    if (!(p.m >= 0)) ctx.invalid_parameter("mass m = " + std::to_string(p.m) + " must be >= 0");
+    if (!(p.m >= 0) || !std::isfinite(p.m)) ctx.invalid_parameter("mass m = " + to_text(p.m) + " must be finite and >= 0");
   }
   void evaluate(const local_input<point_mass>& in, local_output<point_mass>& out, element_context&) const {
     out.f(0) = p.m * in.a(0);

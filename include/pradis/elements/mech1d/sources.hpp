@@ -21,7 +21,7 @@ inline void check_harmonic(element_context& ctx, double a, double f, double ph, 
   if (!std::isfinite(a) || !std::isfinite(ph) || !std::isfinite(c))
     ctx.invalid_parameter("amplitude, phase and constant part must be finite");
   if (!(f >= 0) || !std::isfinite(f))
-    ctx.invalid_parameter("frequency f = " + std::to_string(f) + " must be finite and >= 0");
+    ctx.invalid_parameter("frequency f = " + to_text(f) + " must be finite and >= 0");
 }
 }  // namespace detail
 

@@ -48,8 +48,8 @@ struct eccentric_mass {
   static eccentric_mass from_parameters(std::span<const double> v) { return eccentric_mass({v[0], v[1], v[2]}); }
 
   void new_integration(element_context& ctx) const {
-    if (!(p.m >= 0)) ctx.invalid_parameter("mass m = " + std::to_string(p.m) + " must be >= 0");
-    if (!(p.r >= 0)) ctx.invalid_parameter("eccentricity R = " + std::to_string(p.r) + " must be >= 0");
+    if (!(p.m >= 0) || !std::isfinite(p.m)) ctx.invalid_parameter("mass m = " + to_text(p.m) + " must be finite and >= 0");
+    if (!(p.r >= 0) || !std::isfinite(p.r)) ctx.invalid_parameter("eccentricity R = " + to_text(p.r) + " must be finite and >= 0");
     if (!std::isfinite(p.alpha_deg)) ctx.invalid_parameter("angle alpha must be finite");
   }
 

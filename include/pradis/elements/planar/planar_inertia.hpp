@@ -2,6 +2,7 @@
 /// \file
 /// MD: point inertia element in plane motion (translation X, Y and rotation).
 
+#include <cmath>
 #include <span>
 #include <string>
 
@@ -38,8 +39,8 @@ struct planar_inertia {
   static planar_inertia from_parameters(std::span<const double> v) { return planar_inertia({v[0], v[1]}); }
 
   void new_integration(element_context& ctx) const {
-    if (!(p.m >= 0)) ctx.invalid_parameter("mass m = " + std::to_string(p.m) + " must be >= 0");
-    if (!(p.j >= 0)) ctx.invalid_parameter("moment of inertia J = " + std::to_string(p.j) + " must be >= 0");
+    if (!(p.m >= 0) || !std::isfinite(p.m)) ctx.invalid_parameter("mass m = " + to_text(p.m) + " must be finite and >= 0");
+    if (!(p.j >= 0) || !std::isfinite(p.j)) ctx.invalid_parameter("moment of inertia J = " + to_text(p.j) + " must be finite and >= 0");
   }
 
   void evaluate(const local_input<planar_inertia>& in, local_output<planar_inertia>& out, element_context&) const {

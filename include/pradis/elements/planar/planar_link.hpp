@@ -14,7 +14,8 @@ namespace pradis::elements {
 /// working in tension and compression. Flows (forces the system applies to the
 /// link): F_A = -k (L - L0) e, F_B = -F_A, with e = (B - A) / L.
 struct planar_link {
-  static constexpr pradis::passport passport{.name = "LINKD", .ext = 4, .par = 5, .wrk = 3, .adr = 1, .ign = 23};
+  static constexpr pradis::passport passport{
+      .name = "LINKD", .ext = 4, .par = 5, .str = 2, .wrk = 3, .adr = 1, .ign = 23};
   static constexpr element_help help{
       .title = "ideal elastic axial link for plane motion",
       .name = "Ideal elastic element for plane motion, working in tension and compression",
@@ -31,8 +32,10 @@ struct planar_link {
       .work = "1 - initial length L0 [m]\n"
               "2 - current length L [m]\n"
               "3 - axial force k (L - L0) [N], positive in tension",
-      .special = "code 100 if A and B coincide initially or k < 0; code 75 if the current length becomes "
-                 "close to zero during the run (treated as a failed step; reported if it persists at SMIN)"};
+      .special = "code 100 if A and B coincide initially, k < 0 or a parameter is not finite; code 75 if the "
+                 "current length becomes close to zero during the run, or the link's direction reverses within one "
+                 "step (it passed through zero length); treated as a failed step, reported if it persists at SMIN. "
+                 "The state vector (STR = 2) holds the direction of the last accepted step"};
 
   /// Typed parameters, in PAR order.
   struct parameters {
@@ -48,9 +51,11 @@ struct planar_link {
 
   /// NEWINT: parameter checks and the initial length into W(1).
   void new_integration(element_context& ctx) const {
+    if (!std::isfinite(p.xa0) || !std::isfinite(p.ya0) || !std::isfinite(p.xb0) || !std::isfinite(p.yb0))
+      ctx.invalid_parameter("the coordinates of A and B must be finite");
     const double l0 = std::hypot(p.xb0 - p.xa0, p.yb0 - p.ya0);
     if (!(l0 > min_length)) ctx.invalid_parameter("points A and B coincide: the initial length is zero");
-    if (!(p.k >= 0)) ctx.invalid_parameter("stiffness k = " + std::to_string(p.k) + " must be >= 0");
+    if (!(p.k >= 0) || !std::isfinite(p.k)) ctx.invalid_parameter("stiffness k = " + to_text(p.k) + " must be finite and >= 0");
     ctx.work[0] = l0;
   }
 
@@ -61,6 +66,17 @@ struct planar_link {
     const double l = std::hypot(dx, dy);
     if (!(l > min_length * std::max(1.0, l0))) ctx.singular("the length of the link has become close to zero");
     const double c = dx / l, s = dy / l, du = l - l0;
+    // The state vector keeps the direction of the last accepted step: a reversed
+    // direction means the link passed through zero length within the step (a
+    // step cut resolves a mere fast rotation; a real passage persists to SMIN).
+    if (ctx.old_state.size() == 2 && ctx.new_state.size() == 2) {
+      const double oc = ctx.old_state[0], os = ctx.old_state[1];
+      if ((oc != 0.0 || os != 0.0) && c * oc + s * os < 0.0)
+        ctx.singular("the link passed through zero length (its direction reversed within one step); its length "
+                     "became close to zero");
+      ctx.new_state[0] = c;
+      ctx.new_state[1] = s;
+    }
     out.f(0) = -p.k * du * c;
     out.f(1) = -p.k * du * s;
     out.f(2) = -out.f(0);

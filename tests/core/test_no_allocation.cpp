@@ -1,0 +1,449 @@
+// The hot paths do not allocate: every library element's evaluate (with and
+// without the Jacobian), assembler::evaluate over a built model, sparse_lu
+// factorize + solve after analyze, and a whole integration step
+// (simulation::run of one step after the first stage).
+//
+// How: this file replaces the global operator new/delete (all variants) of the
+// whole test executable with versions that forward to malloc/free and count,
+// but only on the thread that armed them and only while an allocation_probe
+// is alive; everywhere else they behave like the standard ones. Eigen's
+// dynamic-size storage does not use operator new but malloc, so on glibc (and
+// without a sanitizer, which owns malloc itself) malloc, calloc and realloc are
+// interposed as well, forwarding to glibc's __libc_* entry points and counting
+// under the same rule. Where that is unavailable the malloc check is skipped
+// and only operator new/delete are counted.
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdlib>
+#include <new>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "pradis/assembly/assembler.hpp"
+#include "pradis/elements/library.hpp"
+#include "pradis/integrators/newmark.hpp"
+#include "pradis/integrators/simulation.hpp"
+#include "pradis/linalg/ordering.hpp"
+#include "pradis/linalg/sparse_lu.hpp"
+#include "pradis/linalg/sparsity.hpp"
+#include "pradis/model/model.hpp"
+
+// ---------------------------------------------------------------------------
+// Counting allocator hooks
+// ---------------------------------------------------------------------------
+
+namespace {
+
+struct allocation_counts {
+  long news = 0;      ///< operator new / new[] calls (all variants)
+  long deletes = 0;   ///< operator delete / delete[] calls with a non-null pointer
+  long mallocs = 0;   ///< malloc / calloc / realloc calls (where interposed)
+};
+
+constinit thread_local int armed = 0;
+constinit thread_local allocation_counts counts{};
+
+void* counted_new(std::size_t n) {
+  if (armed) ++counts.news;
+  void* p = std::malloc(n == 0 ? 1 : n);
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+void* counted_new(std::size_t n, std::align_val_t al) {
+  if (armed) ++counts.news;
+  const auto a = static_cast<std::size_t>(al);
+  const std::size_t size = n == 0 ? a : (n + a - 1) / a * a;  // aligned_alloc wants a multiple of the alignment
+  void* p = std::aligned_alloc(a, size);
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+void counted_delete(void* p) noexcept {
+  if (!p) return;
+  if (armed) ++counts.deletes;
+  std::free(p);
+}
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || __has_feature(thread_sanitizer)
+#define PRADIS_TEST_SANITIZED 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define PRADIS_TEST_SANITIZED 1
+#endif
+
+#if defined(__GLIBC__) && !defined(PRADIS_TEST_SANITIZED)
+#define PRADIS_TEST_COUNTS_MALLOC 1
+constexpr bool counts_malloc = true;
+#else
+constexpr bool counts_malloc = false;
+#endif
+
+/// Counts the allocations made on this thread while alive.
+class allocation_probe {
+ public:
+  allocation_probe() {
+    counts = {};
+    ++armed;
+  }
+  ~allocation_probe() { --armed; }
+  allocation_probe(const allocation_probe&) = delete;
+  allocation_probe& operator=(const allocation_probe&) = delete;
+  /// Counts so far (read them while the probe is alive: reading allocates nothing).
+  allocation_counts counts_now() const { return counts; }
+};
+
+}  // namespace
+
+void* operator new(std::size_t n) { return counted_new(n); }
+void* operator new[](std::size_t n) { return counted_new(n); }
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  try {
+    return counted_new(n);
+  } catch (...) {
+    return nullptr;
+  }
+}
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
+  try {
+    return counted_new(n);
+  } catch (...) {
+    return nullptr;
+  }
+}
+void* operator new(std::size_t n, std::align_val_t al) { return counted_new(n, al); }
+void* operator new[](std::size_t n, std::align_val_t al) { return counted_new(n, al); }
+void* operator new(std::size_t n, std::align_val_t al, const std::nothrow_t&) noexcept {
+  try {
+    return counted_new(n, al);
+  } catch (...) {
+    return nullptr;
+  }
+}
+void* operator new[](std::size_t n, std::align_val_t al, const std::nothrow_t&) noexcept {
+  try {
+    return counted_new(n, al);
+  } catch (...) {
+    return nullptr;
+  }
+}
+void operator delete(void* p) noexcept { counted_delete(p); }
+void operator delete[](void* p) noexcept { counted_delete(p); }
+void operator delete(void* p, std::size_t) noexcept { counted_delete(p); }
+void operator delete[](void* p, std::size_t) noexcept { counted_delete(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { counted_delete(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { counted_delete(p); }
+void operator delete(void* p, std::align_val_t) noexcept { counted_delete(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { counted_delete(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { counted_delete(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { counted_delete(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { counted_delete(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { counted_delete(p); }
+
+#ifdef PRADIS_TEST_COUNTS_MALLOC
+// glibc's own entry points (exported, stable since 2.2.5); free needs no hook:
+// everything is still allocated by glibc.
+extern "C" void* __libc_malloc(std::size_t) noexcept;
+extern "C" void* __libc_calloc(std::size_t, std::size_t) noexcept;
+extern "C" void* __libc_realloc(void*, std::size_t) noexcept;
+extern "C" void* malloc(std::size_t n) noexcept {
+  if (armed) ++counts.mallocs;
+  return __libc_malloc(n);
+}
+extern "C" void* calloc(std::size_t n, std::size_t size) noexcept {
+  if (armed) ++counts.mallocs;
+  return __libc_calloc(n, size);
+}
+extern "C" void* realloc(void* p, std::size_t n) noexcept {
+  if (armed) ++counts.mallocs;
+  return __libc_realloc(p, n);
+}
+#endif
+
+// ---------------------------------------------------------------------------
+// Helpers
+// ---------------------------------------------------------------------------
+
+namespace {
+
+using namespace pradis;
+using namespace pradis::elements;
+
+/// Runs f() under a probe and returns the counts.
+template <class F>
+allocation_counts count_allocations(F&& f) {
+  allocation_probe probe;
+  f();
+  return probe.counts_now();
+}
+
+void check_none(const allocation_counts& c) {
+  CHECK(c.news == 0);
+  CHECK(c.deletes == 0);
+  CHECK(c.mallocs == 0);
+}
+
+template <class E>
+void check_element_does_not_allocate() {
+  constexpr passport p = E::passport;
+  CAPTURE(p.name);
+  E e(E::example());
+  int npar = p.par;
+  if constexpr (requires { e.parameter_count(); }) npar = e.parameter_count();
+  std::vector<double> work(static_cast<std::size_t>(p.work_size(npar)), 0.0);
+  std::vector<double> old_state(static_cast<std::size_t>(p.state_size(npar)), 0.0);
+  std::vector<double> new_state(old_state.size(), 0.0);
+  element_context ctx(p.name, "probe");
+  ctx.work = work;
+  ctx.old_state = old_state;
+  ctx.new_state = new_state;
+  ctx.npar = npar;
+  if constexpr (HasNewIntegration<E>) {  // NEWINT at the zero step, as the simulation does
+    ctx.newint = true;
+    e.new_integration(ctx);
+    ctx.newint = false;
+  }
+  ctx.time = 0.25;
+  ctx.step = 1e-3;
+  ctx.nstep = 3;
+  local_input<E> in;
+  for (int k = 0; k < element_traits<E>::n; ++k) {  // a small, admissible, non-trivial state
+    in.u(k) = 0.01 * (k + 1);
+    in.v(k) = 0.1 * (k + 1) - 0.2;
+    in.a(k) = 0.5 * (k + 1) - 1.0;
+  }
+  in.t = 0.25;
+  local_output<E> out, out_nojac;
+  out_nojac.want_jacobian = false;
+  const allocation_counts c = count_allocations([&] {
+    out.clear();
+    e.evaluate(in, out, ctx);
+    out_nojac.clear();
+    e.evaluate(in, out_nojac, ctx);
+  });
+  check_none(c);
+  CHECK(out.f.allFinite());
+}
+
+template <class... Es>
+void check_all_elements(type_list<Es...>) {
+  (check_element_does_not_allocate<Es>(), ...);
+}
+
+/// The benchmark scene (bench/chain.hpp), small: N MD bodies on the X axis, LINKD
+/// between neighbours, body 1 held by two LINKD to the ground, a force on the last body.
+template <class M>
+void build_chain(M& m, int n) {
+  const dof g = M::ground();
+  std::vector<dof> x, y;
+  for (int i = 0; i < n; ++i) {
+    x.push_back(m.add_dof());
+    y.push_back(m.add_dof());
+    const dof r = m.add_dof();
+    m.template add<planar_inertia>("", {1.0, 0.1}, x.back(), y.back(), r);
+  }
+  m.template add<planar_link>("", {-1.0, 0.0, 0.0, 0.0, 1e4}, g, g, x[0], y[0]);
+  m.template add<planar_link>("", {0.0, -1.0, 0.0, 0.0, 1e4}, g, g, x[0], y[0]);
+  for (int i = 0; i + 1 < n; ++i)
+    m.template add<planar_link>("", {double(i), 0.0, double(i + 1), 0.0, 1e4}, x[static_cast<std::size_t>(i)],
+                                y[static_cast<std::size_t>(i)], x[static_cast<std::size_t>(i + 1)],
+                                y[static_cast<std::size_t>(i + 1)]);
+  m.template add<constant_force>("", {1.0}, y.back());
+}
+
+template <class M>
+void new_integration(M& m) {
+  m.for_each_instances([&](auto& vec) {
+    for (auto& in : vec) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (HasNewIntegration<E>) {
+        element_context ctx(E::passport.name, in.name);
+        assembler<M>::bind(m, in, ctx);
+        in.element.new_integration(ctx);
+      }
+    }
+  });
+}
+
+/// A 2D 5-point grid (n x n nodes) with non-symmetric, diagonally dominant values:
+/// an LU with real fill-in.
+struct grid_matrix {
+  linalg::sparsity_pattern pattern;
+  std::vector<double> values;
+};
+grid_matrix make_grid(int n) {
+  std::vector<std::pair<int, int>> e;
+  auto id = [n](int i, int j) { return i * n + j; };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      e.emplace_back(id(i, j), id(i, j));
+      if (i > 0) e.emplace_back(id(i, j), id(i - 1, j));
+      if (i + 1 < n) e.emplace_back(id(i, j), id(i + 1, j));
+      if (j > 0) e.emplace_back(id(i, j), id(i, j - 1));
+      if (j + 1 < n) e.emplace_back(id(i, j), id(i, j + 1));
+    }
+  grid_matrix g;
+  g.pattern = linalg::sparsity_pattern::from_entries(n * n, e);
+  g.values.resize(static_cast<std::size_t>(g.pattern.nnz()));
+  for (int r = 0; r < g.pattern.n; ++r)
+    for (int q = g.pattern.row_ptr[static_cast<std::size_t>(r)]; q < g.pattern.row_ptr[static_cast<std::size_t>(r) + 1];
+         ++q) {
+      const int c = g.pattern.col[static_cast<std::size_t>(q)];
+      g.values[static_cast<std::size_t>(q)] = c == r ? 4.5 : (c > r ? -1.0 : -0.7);
+    }
+  return g;
+}
+
+/// max |A x - b| for a CSR matrix.
+double residual_norm(const linalg::sparsity_pattern& p, const std::vector<double>& v, const std::vector<double>& x,
+                     const std::vector<double>& b) {
+  double worst = 0;
+  for (int r = 0; r < p.n; ++r) {
+    double s = -b[static_cast<std::size_t>(r)];
+    for (int q = p.row_ptr[static_cast<std::size_t>(r)]; q < p.row_ptr[static_cast<std::size_t>(r) + 1]; ++q)
+      s += v[static_cast<std::size_t>(q)] * x[static_cast<std::size_t>(p.col[static_cast<std::size_t>(q)])];
+    worst = std::max(worst, std::abs(s));
+  }
+  return worst;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Tests
+// ---------------------------------------------------------------------------
+
+TEST_SUITE("core/allocation") {
+  TEST_CASE("the counting hooks see an allocation while armed, and only then") {
+    std::vector<int>* outside = new std::vector<int>(100, 1);  // not armed: not counted
+    const allocation_counts c = count_allocations([&] {
+      std::vector<int> v(1000, 2);
+      // Heap storage reached through a volatile pointer, so the pair is not elided.
+      int* volatile q = new int[64];
+      q[0] = v[999];
+      delete[] q;
+    });
+    delete outside;
+    CHECK(c.news >= 1);  // the compiler may elide the vector's allocation, not the volatile one
+    CHECK(c.deletes == c.news);
+    if (counts_malloc) {
+      // Eigen's dynamic storage goes to malloc directly, not through operator new.
+      double sum = 0;
+      const allocation_counts ce = count_allocations([&] {
+        Eigen::VectorXd big = Eigen::VectorXd::Ones(1000);
+        double* volatile data = big.data();
+        sum = data[0] + big.sum();
+      });
+      CHECK(sum == doctest::Approx(1001.0));
+      CHECK(ce.mallocs >= 1);
+      CHECK(ce.news == 0);
+    } else {
+      MESSAGE("malloc is not interposed here (sanitizer or non-glibc): only operator new/delete are counted");
+    }
+    CHECK(armed == 0);
+  }
+
+  TEST_CASE("no library element allocates in evaluate (with and without the Jacobian)") {
+    check_all_elements(library_elements{});
+  }
+
+  TEST_CASE("assembler::evaluate over a built planar chain (N = 50) does not allocate") {
+    auto run = [](auto& m) {
+      using M = std::remove_cvref_t<decltype(m)>;
+      build_chain(m, 50);
+      new_integration(m);
+      std::vector<char> prescribed(static_cast<std::size_t>(m.dof_count()), 0);
+      prescribed[0] = 1;
+      assembler<M> a;
+      a.build(m, prescribed);
+      REQUIRE(a.equations() == 150);
+      global_state s;
+      s.resize(m.dof_count());
+      for (int d = 1; d < m.dof_count(); ++d) {
+        s.u(d) = 1e-3 * std::sin(0.37 * d);
+        s.v(d) = 1e-2 * std::cos(0.37 * d);
+        s.a(d) = 0.1 * std::sin(0.74 * d);
+      }
+      const jacobian_coefficients c = newmark{}.coefficients(1e-3);
+      call_info with_jacobian{0.5, 1e-3, 2, 1, true, nullptr};
+      call_info flows_only{0.5, 1e-3, 2, 0, false, nullptr};
+      a.evaluate(m, s, c, with_jacobian);  // warm-up, outside the probe
+      const allocation_counts counts = count_allocations([&] {
+        a.evaluate(m, s, c, with_jacobian);
+        a.evaluate(m, s, c, flows_only);
+        a.evaluate(m, s, c, with_jacobian);
+      });
+      check_none(counts);
+      CHECK(a.residual().allFinite());
+    };
+    SUBCASE("model listing the chain's element types") {
+      model<planar_inertia, planar_link, constant_force> m;
+      run(m);
+    }
+    SUBCASE("library_model") {
+      library_model m;
+      run(m);
+    }
+  }
+
+  TEST_CASE("sparse_lu factorize and solve do not allocate after analyze") {
+    auto check_matrix = [](const linalg::sparsity_pattern& p, const std::vector<double>& values) {
+      linalg::sparse_lu<linalg::min_degree_ordering> lu;
+      lu.analyze(p);
+      std::vector<double> b(static_cast<std::size_t>(p.n));
+      for (std::size_t i = 0; i < b.size(); ++i) b[i] = std::sin(1.0 + static_cast<double>(i));
+      std::vector<double> x = b;
+      lu.factorize(values);  // warm-up, outside the probe
+      const allocation_counts counts = count_allocations([&] {
+        lu.factorize(values);
+        lu.solve(x);
+        lu.factorize(values);
+      });
+      check_none(counts);
+      x = b;
+      lu.solve(x);
+      CHECK(residual_norm(p, values, x, b) < 1e-9);
+    };
+    SUBCASE("5-point grid 30 x 30 (fill-in)") {
+      const grid_matrix g = make_grid(30);
+      check_matrix(g.pattern, g.values);
+    }
+    SUBCASE("Newton matrix of the planar chain (N = 50)") {
+      model<planar_inertia, planar_link, constant_force> m;
+      build_chain(m, 50);
+      new_integration(m);
+      std::vector<char> prescribed(static_cast<std::size_t>(m.dof_count()), 0);
+      prescribed[0] = 1;
+      assembler<decltype(m)> a;
+      a.build(m, prescribed);
+      global_state s;
+      s.resize(m.dof_count());
+      a.evaluate(m, s, newmark{}.coefficients(1e-3), call_info{});
+      const std::vector<double> values(a.values().begin(), a.values().end());
+      check_matrix(a.pattern(), values);
+    }
+  }
+
+  TEST_CASE("simulation::run of further steps does not allocate once the first stage has run") {
+    model<planar_inertia, planar_link, constant_force> m;
+    build_chain(m, 50);
+    simulation sim(m);
+    sim.run({.end = 1e-3, .smax = 1e-3});  // zero step, build, analyze, first step
+    sim.run({.end = 2e-3, .smax = 1e-3});  // warm-up of a later stage
+    run_statistics one{}, many{};
+    const allocation_counts counts = count_allocations([&] {
+      one = sim.run({.end = 3e-3, .smax = 1e-3});
+      many = sim.run({.end = 19e-3, .smax = 1e-3});
+    });
+    check_none(counts);
+    CHECK(one.steps == 1);
+    CHECK(many.steps == 16);
+    CHECK(std::isfinite(sim.v(dof{m.dof_count() - 2})));
+  }
+}

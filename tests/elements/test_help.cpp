@@ -1,0 +1,54 @@
+// Help text of every library element (manual section 3.4): the "special
+// situations" entry names the code-100 situation the element checks, and the
+// kinematic and initial-condition elements and LINKD also name their code 90 / 75.
+
+#include <doctest/doctest.h>
+
+#include <string>
+#include <string_view>
+
+#include "pradis/elements/library.hpp"
+
+namespace {
+
+/// The phrase each element's help.special must contain besides "code 100": its check.
+constexpr std::string_view code100_situation(std::string_view name) {
+  if (name == "MASS") return "m < 0";
+  if (name == "SPRING") return "k < 0";
+  if (name == "DAMPER") return "c < 0";
+  if (name == "F") return "not finite";
+  if (name == "FSIN" || name == "XSRC" || name == "VSRC") return "f < 0";
+  if (name == "X0") return "u0 is changed";
+  if (name == "V0") return "v0 is changed";
+  if (name == "MD") return "J < 0";
+  if (name == "LINKD") return "coincide";
+  if (name == "MEKS") return "R < 0";
+  return "";
+}
+
+template <class E>
+void check_special() {
+  const std::string name(E::passport.name);
+  const std::string special(E::help.special);
+  CAPTURE(name);
+  CAPTURE(special);
+  REQUIRE_FALSE(code100_situation(name).empty());  // a new element needs its line in this table
+  CHECK(special.find("code 100") != std::string::npos);
+  CHECK(special.find(code100_situation(name)) != std::string::npos);
+  if (name == "XSRC" || name == "VSRC" || name == "X0" || name == "V0") CHECK(special.find("code 90") != std::string::npos);
+  if (name == "LINKD") CHECK(special.find("code 75") != std::string::npos);
+}
+
+template <class... Es>
+void check_all_special(pradis::type_list<Es...>) {
+  (check_special<Es>(), ...);
+}
+
+}  // namespace
+
+TEST_SUITE("elements/help") {
+  TEST_CASE("the help text of every library element names its code-100 situations (and 90 / 75 where they apply)") {
+    static_assert(pradis::elements::library_elements::size == 12);
+    check_all_special(pradis::elements::library_elements{});
+  }
+}
