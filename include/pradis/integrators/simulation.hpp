@@ -643,10 +643,12 @@ class simulation<model<Es...>, Scheme, Solver> {
           const auto d = asm_.dof_of(i);
           residual_ok = std::abs(asm_.residual()(d)) <= nw.dabsi + nw.drlti * asm_.abs_sum()(d);
         }
-        // Converged: both PRADIS tests pass; or the correction test passes and the
-        // last correction was at round-off level (the residual cannot get smaller
-        // in double precision: its floor is about |J| eps |v| once a = (v - v0)/(gamma h)).
-        if (k > 0 && correction_ok && (residual_ok || (k >= 2 && roundoff)) && (!nw.second || k >= 2)) {
+        // Converged: both PRADIS tests pass; or, after at least two corrections,
+        // the last correction was at round-off level: neither the unknown nor the
+        // residual can get smaller in double precision (the residual's floor is
+        // about |J| eps |v| once a = (v - v0) / (gamma h)), whatever DABSU/DRLTU
+        // and DABSI/DRLTI ask for.
+        if (k > 0 && ((correction_ok && residual_ok) || (k >= 2 && roundoff)) && (!nw.second || k >= 2)) {
           if (opt_.error_control && !error_accepts(h)) {
             s_ = s0_;
             t_ = t0;

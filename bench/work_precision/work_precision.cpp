@@ -1,0 +1,724 @@
+// Work-precision benchmark: error at the final time against CPU time for the
+// pradis integrators (error-controlled tolerance sweep and fixed-step sweep) and
+// for peers on the same equations (SUNDIALS IDA and CVODE BDF, Boost.Odeint
+// runge_kutta_dopri5; rosenbrock4 only with PRADIS_WP_ROSENBROCK4, see below),
+// following Hairer-Wanner / DiffEqDevTools:
+// reference from a closed form, CPU time = minimum of 3 runs after one warm-up,
+// all solvers in one process.
+//
+// Problems (second-order systems M u'' + g(t, u, u') = 0, M diagonal):
+//   pendulum  large-amplitude rigid pendulum (IFToMM A01: 1 kg, 1 m, g = 9.81,
+//             released from the horizontal) as a 1-DOF angle model
+//             m L^2 phi'' + m g L sin(phi) = 0, phi(0) = pi/2, to t = 10 s; exact
+//             solution sin(phi/2) = k sn(K(k) - w t; k), k = 1/sqrt(2), w = sqrt(g/L).
+//   stiff     damped two-mass system, about 1 Hz and 100 kHz (m1 = 1 on k1 =
+//             (2 pi)^2, 2 % damping; m2 = 1e-3 on k2 = m2 (2 pi 1e5)^2 to m1, 5 %
+//             damping), x1(0) = 1, x2(0) = 1.001, to t = 1.125 s (a generic phase of the
+//             slow mode); exact modal solution.
+//   fpu       Fermi-Pasta-Ulam chain (Hairer-Lubich-Wanner I.5.1), omega = 50, to
+//             t = 10; reference by RK4 with h = 1e-5.
+// Error at the final time: max(|u - u_ref|_inf / |u_ref|_inf, |v - v_ref|_inf / |v_ref|_inf)
+// (u all displacements, v all velocities).
+//
+// Usage: work_precision [--smoke] [--out FILE] [--only PROBLEM]
+//   (default FILE docs/data/work_precision.csv)
+//   --smoke: loosest setting of every solver only, one timed run (CTest).
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <numbers>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "pradis/core/element.hpp"
+#include "pradis/elements/library.hpp"
+#include "pradis/integrators/newmark.hpp"
+#include "pradis/integrators/simulation.hpp"
+
+#ifdef PRADIS_WP_SUNDIALS
+#include <cvode/cvode.h>
+#include <ida/ida.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#endif
+#ifdef PRADIS_WP_BOOST
+#include <boost/numeric/odeint/integrate/integrate_adaptive.hpp>
+#include <boost/numeric/odeint/stepper/generation.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
+#ifdef PRADIS_WP_ROSENBROCK4
+#include <boost/numeric/odeint.hpp>
+#endif
+#endif
+
+namespace wp {
+
+// ---------------------------------------------------------------------------
+// Problems
+// ---------------------------------------------------------------------------
+
+/// Jacobi sn, cn of u with modulus k by the AGM / descending Landen scheme
+/// (Abramowitz & Stegun 16.4).
+inline void jacobi_sn_cn(double u, double k, double& sn, double& cn) {
+  double a[32], c[32];
+  a[0] = 1;
+  double b = std::sqrt(1 - k * k);
+  c[0] = k;
+  int n = 0;
+  while (std::abs(c[n]) > 1e-16 && n < 30) {
+    a[n + 1] = 0.5 * (a[n] + b);
+    c[n + 1] = 0.5 * (a[n] - b);
+    b = std::sqrt(a[n] * b);
+    ++n;
+  }
+  double phi = std::ldexp(a[n] * u, n);
+  for (int i = n; i > 0; --i) phi = 0.5 * (phi + std::asin(c[i] / a[i] * std::sin(phi)));
+  sn = std::sin(phi);
+  cn = std::cos(phi);
+}
+
+inline double elliptic_k(double k) {
+  double a = 1, b = std::sqrt(1 - k * k);
+  for (int i = 0; i < 60 && std::abs(a - b) > 1e-16 * a; ++i) {
+    const double an = 0.5 * (a + b);
+    b = std::sqrt(a * b);
+    a = an;
+  }
+  return std::numbers::pi / (2 * a);
+}
+
+/// A second-order problem M u'' + g(t, u, v) = 0 with M diagonal.
+struct problem {
+  std::string name;
+  int n = 0;
+  std::vector<double> mass, u0, v0;
+  double t_end = 1;
+  std::function<void(double, const double*, const double*, double*)> g;            // g(t, u, v)
+  std::function<void(double, const double*, const double*, Eigen::MatrixXd&, Eigen::MatrixXd&)> dg;  // dg/du, dg/dv
+  std::function<Eigen::VectorXd()> exact;  // (u, v) at t_end
+};
+
+constexpr double pend_g = 9.81, pend_l = 1.0, pend_m = 1.0;
+
+inline problem pendulum() {
+  problem p;
+  p.name = "pendulum";
+  p.n = 1;
+  p.mass = {pend_m * pend_l * pend_l};
+  p.u0 = {std::numbers::pi / 2};
+  p.v0 = {0};
+  p.t_end = 10;
+  p.g = [](double, const double* u, const double*, double* out) { out[0] = pend_m * pend_g * pend_l * std::sin(u[0]); };
+  p.dg = [](double, const double* u, const double*, Eigen::MatrixXd& gu, Eigen::MatrixXd& gv) {
+    gu(0, 0) = pend_m * pend_g * pend_l * std::cos(u[0]);
+    gv(0, 0) = 0;
+  };
+  p.exact = [t = p.t_end] {
+    const double k = std::sqrt(0.5), w = std::sqrt(pend_g / pend_l), kk = elliptic_k(k);
+    double sn, cn;
+    jacobi_sn_cn(kk - w * t, k, sn, cn);
+    Eigen::VectorXd y(2);
+    y(0) = 2 * std::asin(k * sn);
+    y(1) = -2 * k * w * cn;
+    return y;
+  };
+  return p;
+}
+
+struct stiff_data {
+  static constexpr double m1 = 1.0, m2 = 1e-3;
+  static constexpr double w1 = 2 * std::numbers::pi, w2 = 2 * std::numbers::pi * 1e5;
+  static constexpr double k1 = m1 * w1 * w1, k2 = m2 * w2 * w2;
+  static constexpr double c1 = 2 * 0.02 * m1 * w1, c2 = 2 * 0.05 * m2 * w2;
+};
+
+inline problem stiff() {
+  using s = stiff_data;
+  problem p;
+  p.name = "stiff";
+  p.n = 2;
+  p.mass = {s::m1, s::m2};
+  p.u0 = {1.0, 1.001};
+  p.v0 = {0, 0};
+  p.t_end = 1.125;
+  p.g = [](double, const double* u, const double* v, double* out) {
+    const double fs = s::k2 * (u[1] - u[0]) + s::c2 * (v[1] - v[0]);
+    out[0] = s::k1 * u[0] + s::c1 * v[0] - fs;
+    out[1] = fs;
+  };
+  p.dg = [](double, const double*, const double*, Eigen::MatrixXd& gu, Eigen::MatrixXd& gv) {
+    gu << s::k1 + s::k2, -s::k2, -s::k2, s::k2;
+    gv << s::c1 + s::c2, -s::c2, -s::c2, s::c2;
+  };
+  // Modal solution in long double: the eigenvectors of the slow mode carry an
+  // error of about eps |A| / |lambda_slow| (|A| ~ 4e11), 2e-5 in double, 2e-9 here.
+  p.exact = [t = p.t_end] {
+    using ld = long double;
+    using mat = Eigen::Matrix<ld, 4, 4>;
+    using cvec = Eigen::Matrix<std::complex<ld>, 4, 1>;
+    const ld m1 = s::m1, m2 = s::m2, w1 = 2 * std::numbers::pi_v<ld>, w2 = 2 * std::numbers::pi_v<ld> * 1e5L;
+    const ld k1 = m1 * w1 * w1, k2 = m2 * w2 * w2, c1 = 2 * 0.02L * m1 * w1, c2 = 2 * 0.05L * m2 * w2;
+    mat a = mat::Zero();
+    a(0, 2) = a(1, 3) = 1;
+    a(2, 0) = -(k1 + k2) / m1, a(2, 1) = k2 / m1, a(2, 2) = -(c1 + c2) / m1, a(2, 3) = c2 / m1;
+    a(3, 0) = k2 / m2, a(3, 1) = -k2 / m2, a(3, 2) = c2 / m2, a(3, 3) = -c2 / m2;
+    Eigen::EigenSolver<mat> es(a);
+    const Eigen::Matrix<std::complex<ld>, 4, 4> v = es.eigenvectors();
+    cvec x0;
+    x0 << 1.0L, 1.001L, 0.0L, 0.0L;
+    cvec c = v.partialPivLu().solve(x0);
+    for (int i = 0; i < 4; ++i) c(i) *= std::exp(es.eigenvalues()(i) * static_cast<ld>(t));
+    const cvec x = v * c;
+    Eigen::VectorXd y(4);
+    for (int i = 0; i < 4; ++i) y(i) = static_cast<double>(x(i).real());
+    return y;
+  };
+  return p;
+}
+
+/// Fermi-Pasta-Ulam chain (Hairer, Lubich, Wanner, Geometric Numerical
+/// Integration, section I.5.1): 3 stiff linear springs (frequency omega = 50)
+/// joined by soft cubic springs, fixed ends, unit masses; potential
+/// (omega^2/4) sum (q_{2i} - q_{2i-1})^2 + sum_{i=0..3} (q_{2i+1} - q_{2i})^4,
+/// q0 = q7 = 0. Initial values (HLW): x1 = 1, x1' = 1, y1 = 1/omega, y1' = 1, the
+/// rest 0, with x_i = (q_{2i} + q_{2i-1})/sqrt 2, y_i = (q_{2i} - q_{2i-1})/sqrt 2.
+/// To t = 10 (80 periods of the stiff springs). Reference: classical RK4 with
+/// h = 1e-5 (omega h = 5e-4; global error ~ 1e-11).
+constexpr double fpu_omega = 50;
+
+inline problem fpu() {
+  problem p;
+  p.name = "fpu";
+  p.n = 6;
+  p.mass.assign(6, 1.0);
+  const double r = 1 / std::sqrt(2.0);
+  p.u0 = {r * (1 - 1 / fpu_omega), r * (1 + 1 / fpu_omega), 0, 0, 0, 0};
+  p.v0 = {0, r * 2, 0, 0, 0, 0};
+  p.t_end = 10;
+  p.g = [](double, const double* u, const double*, double* out) {
+    const double k = fpu_omega * fpu_omega / 2;
+    for (int i = 0; i < 6; ++i) out[i] = 0;
+    for (int i = 0; i < 6; i += 2) {  // stiff springs (q_{2i-1}, q_{2i}) = (u[i], u[i+1])
+      const double f = k * (u[i] - u[i + 1]);
+      out[i] += f;
+      out[i + 1] -= f;
+    }
+    for (int j = -1; j < 6; j += 2) {  // soft springs (q_{2i}, q_{2i+1}) = (u[j], u[j+1]), ends fixed
+      const double a = j >= 0 ? u[j] : 0.0, b = j + 1 < 6 ? u[j + 1] : 0.0;
+      const double f = 4 * (a - b) * (a - b) * (a - b);
+      if (j >= 0) out[j] += f;
+      if (j + 1 < 6) out[j + 1] -= f;
+    }
+  };
+  p.dg = [](double, const double* u, const double*, Eigen::MatrixXd& gu, Eigen::MatrixXd& gv) {
+    const double k = fpu_omega * fpu_omega / 2;
+    gu.setZero();
+    gv.setZero();
+    for (int i = 0; i < 6; i += 2) {
+      gu(i, i) += k, gu(i + 1, i + 1) += k, gu(i, i + 1) -= k, gu(i + 1, i) -= k;
+    }
+    for (int j = -1; j < 6; j += 2) {
+      const double a = j >= 0 ? u[j] : 0.0, b = j + 1 < 6 ? u[j + 1] : 0.0, c = 12 * (a - b) * (a - b);
+      if (j >= 0) gu(j, j) += c;
+      if (j + 1 < 6) gu(j + 1, j + 1) += c;
+      if (j >= 0 && j + 1 < 6) gu(j, j + 1) -= c, gu(j + 1, j) -= c;
+    }
+  };
+  return p;
+}
+
+/// max(|u - u_ref|_inf / |u_ref|_inf, |v - v_ref|_inf / |v_ref|_inf): relative
+/// error of the displacements and of the velocities at the final time.
+inline double state_error(const Eigen::VectorXd& y, const Eigen::VectorXd& ref) {
+  const Eigen::Index n = ref.size() / 2;
+  const double eu = (y.head(n) - ref.head(n)).cwiseAbs().maxCoeff() / ref.head(n).cwiseAbs().maxCoeff();
+  const double ev = (y.tail(n) - ref.tail(n)).cwiseAbs().maxCoeff() / ref.tail(n).cwiseAbs().maxCoeff();
+  const double e = std::max(eu, ev);
+  return std::isfinite(e) ? e : 1e300;
+}
+
+// ---------------------------------------------------------------------------
+// pradis models
+// ---------------------------------------------------------------------------
+
+/// Gravity moment of the angle-model pendulum: flow m g L sin(phi) (stiffness only).
+struct gravity_moment {
+  static constexpr pradis::passport passport{.name = "GRAVM", .ext = 1, .par = 1, .adr = 1, .ign = 23};
+  static constexpr pradis::element_help help{.title = "bench: gravity moment m g L sin(phi)",
+                                             .name = "Gravity moment of a rigid pendulum",
+                                             .field = "bench",
+                                             .dofs = "1 - angle from the downward vertical [rad]",
+                                             .parameters = "1 - m g L [N m]",
+                                             .work = "",
+                                             .special = "none"};
+  struct parameters {
+    double mgl = 0;
+  };
+  parameters p;
+  explicit gravity_moment(parameters q) : p(q) {}
+  static gravity_moment from_parameters(std::span<const double> v) { return gravity_moment({v[0]}); }
+  void evaluate(const pradis::local_input<gravity_moment>& in, pradis::local_output<gravity_moment>& out,
+                pradis::element_context&) const {
+    out.f(0) = p.mgl * std::sin(in.u(0));
+    if (out.want_jacobian) out.K(0, 0) = p.mgl * std::cos(in.u(0));
+  }
+};
+
+/// Soft cubic spring between two DOFs: flows c d^3, -c d^3, d = u1 - u2.
+struct cubic_spring {
+  static constexpr pradis::passport passport{.name = "CUBIC", .ext = 2, .par = 1, .adr = 1, .ign = 23};
+  static constexpr pradis::element_help help{.title = "bench: cubic spring c (u1 - u2)^3",
+                                             .name = "Cubic spring between two DOFs",
+                                             .field = "bench",
+                                             .dofs = "1 - end 1 [m]\n2 - end 2 [m]",
+                                             .parameters = "1 - coefficient c [N/m^3]",
+                                             .work = "",
+                                             .special = "none"};
+  struct parameters {
+    double c = 0;
+  };
+  parameters p;
+  explicit cubic_spring(parameters q) : p(q) {}
+  static cubic_spring from_parameters(std::span<const double> v) { return cubic_spring({v[0]}); }
+  void evaluate(const pradis::local_input<cubic_spring>& in, pradis::local_output<cubic_spring>& out,
+                pradis::element_context&) const {
+    const double d = in.u(0) - in.u(1), f = p.c * d * d * d, k = 3 * p.c * d * d;
+    out.f << f, -f;
+    if (out.want_jacobian) out.K << k, -k, -k, k;
+  }
+};
+
+struct run_result {
+  Eigen::VectorXd y;
+  long steps = 0, newton = 0, fact = 0;
+  bool ok = true;
+};
+
+struct pradis_setting {
+  bool error_control = true;
+  double tol = 1e-4;  // DABSX = DRLTX
+  double h = 1e-3;    // fixed step (error_control = false)
+};
+
+template <class Scheme>
+run_result run_pradis(const problem& pb, Scheme scheme, const pradis_setting& st) {
+  using namespace pradis;
+  using namespace pradis::elements;
+  run_result r;
+  run_options o;
+  o.end = pb.t_end;
+  o.error_control = st.error_control;
+  if (st.error_control) {
+    o.smax = pb.t_end / 20;
+    o.smin = 1e-12;
+    o.dabsx = o.drltx = st.tol;
+  } else {
+    o.smax = st.h;
+    o.smin = 1e-6 * st.h;
+  }
+  // Newton tolerances below the requested accuracy; DABSI above the round-off of
+  // the flows (stiff: k2 eps |x| ~ 1e-7 N).
+  const double nt = st.error_control ? std::max(1e-3 * st.tol, 1e-11) : 1e-11;
+  o.newton = {.dabsu = nt, .drltu = nt, .dabsi = pb.name == "stiff" ? 1e-6 : 1e-10, .drlti = nt, .itr = 8};
+  auto finish = [&](auto& sim, const std::vector<dof>& d) {
+    try {
+      const run_statistics s = sim.run(o);
+      r.steps = s.steps;
+      r.newton = s.newton_iterations;
+      r.fact = s.factorizations;
+    } catch (const pradis::error& e) {
+      r.ok = false;
+      std::cerr << pb.name << " " << Scheme::name << ": " << e.what() << "\n";
+    }
+    const auto n = static_cast<Eigen::Index>(d.size());
+    r.y.resize(2 * n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      r.y(i) = sim.u(d[static_cast<std::size_t>(i)]);
+      r.y(n + i) = sim.v(d[static_cast<std::size_t>(i)]);
+    }
+  };
+  if (pb.name == "pendulum") {
+    model<point_mass, gravity_moment, initial_displacement> m;
+    const dof x = m.add_dof("phi");
+    m.add<point_mass>("inertia", {pb.mass[0]}, x);
+    m.add<gravity_moment>("gravity", {pend_m * pend_g * pend_l}, x);
+    m.add<initial_displacement>("phi0", {pb.u0[0]}, x);
+    simulation sim(m, scheme);
+    finish(sim, {x});
+  } else if (pb.name == "fpu") {
+    model<point_mass, linear_spring, cubic_spring, initial_displacement, initial_velocity> m;
+    std::vector<dof> q;
+    for (int i = 0; i < 6; ++i) q.push_back(m.add_dof("q" + std::to_string(i + 1)));
+    for (int i = 0; i < 6; ++i) {
+      m.add<point_mass>("m" + std::to_string(i + 1), {1.0}, q[static_cast<std::size_t>(i)]);
+      if (pb.u0[static_cast<std::size_t>(i)] != 0)
+        m.add<initial_displacement>("u0_" + std::to_string(i + 1), {pb.u0[static_cast<std::size_t>(i)]}, q[static_cast<std::size_t>(i)]);
+      if (pb.v0[static_cast<std::size_t>(i)] != 0)
+        m.add<initial_velocity>("v0_" + std::to_string(i + 1), {pb.v0[static_cast<std::size_t>(i)]}, q[static_cast<std::size_t>(i)]);
+    }
+    for (int i = 0; i < 6; i += 2)
+      m.add<linear_spring>("stiff" + std::to_string(i / 2 + 1), {fpu_omega * fpu_omega / 2}, q[static_cast<std::size_t>(i)],
+                           q[static_cast<std::size_t>(i + 1)]);
+    m.add<cubic_spring>("soft0", {4.0}, q[0], m.ground());
+    m.add<cubic_spring>("soft1", {4.0}, q[1], q[2]);
+    m.add<cubic_spring>("soft2", {4.0}, q[3], q[4]);
+    m.add<cubic_spring>("soft3", {4.0}, q[5], m.ground());
+    simulation sim(m, scheme);
+    finish(sim, q);
+  } else {
+    using s = stiff_data;
+    model<point_mass, linear_spring, linear_damper, initial_displacement> m;
+    const dof x1 = m.add_dof("x1"), x2 = m.add_dof("x2");
+    m.add<point_mass>("m1", {s::m1}, x1);
+    m.add<point_mass>("m2", {s::m2}, x2);
+    m.add<linear_spring>("k1", {s::k1}, x1, m.ground());
+    m.add<linear_damper>("c1", {s::c1}, x1, m.ground());
+    m.add<linear_spring>("k2", {s::k2}, x2, x1);
+    m.add<linear_damper>("c2", {s::c2}, x2, x1);
+    m.add<initial_displacement>("x10", {pb.u0[0]}, x1);
+    m.add<initial_displacement>("x20", {pb.u0[1]}, x2);
+    simulation sim(m, scheme);
+    finish(sim, {x1, x2});
+  }
+  return r;
+}
+
+// ---------------------------------------------------------------------------
+// Peers: first-order form y = (u, v), y' = (v, -M^-1 g(t, u, v))
+// ---------------------------------------------------------------------------
+
+inline void rhs(const problem& pb, double t, const double* y, double* dy) {
+  const int n = pb.n;
+  double g[8];
+  pb.g(t, y, y + n, g);
+  for (int i = 0; i < n; ++i) {
+    dy[i] = y[n + i];
+    dy[n + i] = -g[i] / pb.mass[static_cast<std::size_t>(i)];
+  }
+}
+
+/// Reference by the classical Runge-Kutta method with a fixed step h.
+inline Eigen::VectorXd rk4_reference(const problem& pb, double h) {
+  const int m = 2 * pb.n;
+  Eigen::VectorXd y(m), k1(m), k2(m), k3(m), k4(m), tmp(m);
+  for (int i = 0; i < pb.n; ++i) y(i) = pb.u0[static_cast<std::size_t>(i)], y(pb.n + i) = pb.v0[static_cast<std::size_t>(i)];
+  const long steps = std::lround(pb.t_end / h);
+  h = pb.t_end / static_cast<double>(steps);
+  double t = 0;
+  for (long s = 0; s < steps; ++s) {
+    rhs(pb, t, y.data(), k1.data());
+    tmp = y + 0.5 * h * k1;
+    rhs(pb, t + 0.5 * h, tmp.data(), k2.data());
+    tmp = y + 0.5 * h * k2;
+    rhs(pb, t + 0.5 * h, tmp.data(), k3.data());
+    tmp = y + h * k3;
+    rhs(pb, t + h, tmp.data(), k4.data());
+    y += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    t += h;
+  }
+  return y;
+}
+
+#ifdef PRADIS_WP_SUNDIALS
+struct sun_data {
+  const problem* pb;
+};
+
+inline int cv_rhs(sunrealtype t, N_Vector y, N_Vector dy, void* ud) {
+  const auto* d = static_cast<sun_data*>(ud);
+  rhs(*d->pb, t, N_VGetArrayPointer(y), N_VGetArrayPointer(dy));
+  return 0;
+}
+
+/// IDA residual in the implicit second-order form: (u' - v, M v' + g(t, u, v)).
+inline int ida_res(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud) {
+  const problem& pb = *static_cast<sun_data*>(ud)->pb;
+  const double *y = N_VGetArrayPointer(yy), *p = N_VGetArrayPointer(yp);
+  double* r = N_VGetArrayPointer(rr);
+  const int n = pb.n;
+  double g[8];
+  pb.g(t, y, y + n, g);
+  for (int i = 0; i < n; ++i) {
+    r[i] = p[i] - y[n + i];
+    r[n + i] = pb.mass[static_cast<std::size_t>(i)] * p[n + i] + g[i];
+  }
+  return 0;
+}
+
+inline run_result run_cvode(const problem& pb, double rtol) {
+  run_result r;
+  SUNContext ctx;
+  SUNContext_Create(nullptr, &ctx);
+  const int n2 = 2 * pb.n;
+  N_Vector y = N_VNew_Serial(n2, ctx);
+  double* yd = N_VGetArrayPointer(y);
+  for (int i = 0; i < pb.n; ++i) yd[i] = pb.u0[static_cast<std::size_t>(i)], yd[pb.n + i] = pb.v0[static_cast<std::size_t>(i)];
+  sun_data ud{&pb};
+  void* mem = CVodeCreate(CV_BDF, ctx);
+  CVodeInit(mem, cv_rhs, 0.0, y);
+  CVodeSStolerances(mem, rtol, rtol);
+  CVodeSetUserData(mem, &ud);
+  CVodeSetMaxNumSteps(mem, 100000000);
+  SUNMatrix a = SUNDenseMatrix(n2, n2, ctx);
+  SUNLinearSolver ls = SUNLinSol_Dense(y, a, ctx);
+  CVodeSetLinearSolver(mem, ls, a);
+  double t = 0;
+  r.ok = CVode(mem, pb.t_end, y, &t, CV_NORMAL) >= 0;
+  long nst = 0, nni = 0, nsetup = 0;
+  CVodeGetNumSteps(mem, &nst);
+  CVodeGetNumNonlinSolvIters(mem, &nni);
+  CVodeGetNumLinSolvSetups(mem, &nsetup);
+  r.steps = nst, r.newton = nni, r.fact = nsetup;
+  r.y = Eigen::Map<Eigen::VectorXd>(yd, n2);
+  CVodeFree(&mem);
+  SUNLinSolFree(ls);
+  SUNMatDestroy(a);
+  N_VDestroy(y);
+  SUNContext_Free(&ctx);
+  return r;
+}
+
+inline run_result run_ida(const problem& pb, double rtol) {
+  run_result r;
+  SUNContext ctx;
+  SUNContext_Create(nullptr, &ctx);
+  const int n2 = 2 * pb.n;
+  N_Vector yy = N_VNew_Serial(n2, ctx), yp = N_VNew_Serial(n2, ctx);
+  double *y = N_VGetArrayPointer(yy), *p = N_VGetArrayPointer(yp);
+  for (int i = 0; i < pb.n; ++i) y[i] = pb.u0[static_cast<std::size_t>(i)], y[pb.n + i] = pb.v0[static_cast<std::size_t>(i)];
+  rhs(pb, 0.0, y, p);  // consistent initial derivatives
+  sun_data ud{&pb};
+  void* mem = IDACreate(ctx);
+  IDAInit(mem, ida_res, 0.0, yy, yp);
+  IDASStolerances(mem, rtol, rtol);
+  IDASetUserData(mem, &ud);
+  IDASetMaxNumSteps(mem, 100000000);
+  SUNMatrix a = SUNDenseMatrix(n2, n2, ctx);
+  SUNLinearSolver ls = SUNLinSol_Dense(yy, a, ctx);
+  IDASetLinearSolver(mem, ls, a);
+  double t = 0;
+  r.ok = IDASolve(mem, pb.t_end, &t, yy, yp, IDA_NORMAL) >= 0;
+  long nst = 0, nni = 0, nsetup = 0;
+  IDAGetNumSteps(mem, &nst);
+  IDAGetNumNonlinSolvIters(mem, &nni);
+  IDAGetNumLinSolvSetups(mem, &nsetup);
+  r.steps = nst, r.newton = nni, r.fact = nsetup;
+  r.y = Eigen::Map<Eigen::VectorXd>(y, n2);
+  IDAFree(&mem);
+  SUNLinSolFree(ls);
+  SUNMatDestroy(a);
+  N_VDestroy(yy);
+  N_VDestroy(yp);
+  SUNContext_Free(&ctx);
+  return r;
+}
+#endif
+
+#ifdef PRADIS_WP_BOOST
+namespace odeint = boost::numeric::odeint;
+
+inline run_result run_dopri5(const problem& pb, double rtol) {
+  using state = std::vector<double>;
+  state y(static_cast<std::size_t>(2 * pb.n));
+  for (int i = 0; i < pb.n; ++i)
+    y[static_cast<std::size_t>(i)] = pb.u0[static_cast<std::size_t>(i)],
+                              y[static_cast<std::size_t>(pb.n + i)] = pb.v0[static_cast<std::size_t>(i)];
+  auto f = [&](const state& x, state& dx, double t) { rhs(pb, t, x.data(), dx.data()); };
+  run_result r;
+  r.steps = static_cast<long>(odeint::integrate_adaptive(
+      odeint::make_controlled<odeint::runge_kutta_dopri5<state>>(rtol, rtol), f, y, 0.0, pb.t_end, 1e-6));
+  r.y = Eigen::Map<Eigen::VectorXd>(y.data(), 2 * pb.n);
+  return r;
+}
+
+// rosenbrock4 needs uBLAS, whose Boost <= 1.74 storage (Debian 12) calls
+// std::allocator::construct, removed in C++20: enabled only with PRADIS_WP_ROSENBROCK4
+// (a newer Boost).
+#ifdef PRADIS_WP_ROSENBROCK4
+inline run_result run_rosenbrock4(const problem& pb, double rtol) {
+  using vec = boost::numeric::ublas::vector<double>;
+  using mat = boost::numeric::ublas::matrix<double>;
+  const int n = pb.n;
+  vec y(static_cast<std::size_t>(2 * n));
+  for (int i = 0; i < n; ++i)
+    y[static_cast<std::size_t>(i)] = pb.u0[static_cast<std::size_t>(i)],
+                              y[static_cast<std::size_t>(n + i)] = pb.v0[static_cast<std::size_t>(i)];
+  auto f = [&](const vec& x, vec& dx, double t) { rhs(pb, t, &x[0], &dx[0]); };
+  auto jac = [&](const vec& x, mat& j, double t, vec& dfdt) {
+    Eigen::MatrixXd gu(n, n), gv(n, n);
+    pb.dg(t, &x[0], &x[static_cast<std::size_t>(n)], gu, gv);
+    for (int a = 0; a < 2 * n; ++a) {
+      dfdt[static_cast<std::size_t>(a)] = 0;
+      for (int b = 0; b < 2 * n; ++b) j(static_cast<std::size_t>(a), static_cast<std::size_t>(b)) = 0;
+    }
+    for (int a = 0; a < n; ++a) {
+      const auto ua = static_cast<std::size_t>(a), va = static_cast<std::size_t>(n + a);
+      j(ua, va) = 1;
+      for (int b = 0; b < n; ++b) {
+        j(va, static_cast<std::size_t>(b)) = -gu(a, b) / pb.mass[ua];
+        j(va, static_cast<std::size_t>(n + b)) = -gv(a, b) / pb.mass[ua];
+      }
+    }
+  };
+  run_result r;
+  r.steps = static_cast<long>(odeint::integrate_adaptive(odeint::make_controlled<odeint::rosenbrock4<double>>(rtol, rtol),
+                                                         std::make_pair(f, jac), y, 0.0, pb.t_end, 1e-6));
+  r.fact = r.steps;  // one LU per (accepted) step, rejected ones not counted by odeint
+  r.y = Eigen::Map<Eigen::VectorXd>(&y[0], 2 * n);
+  return r;
+}
+#endif
+#endif
+
+// ---------------------------------------------------------------------------
+// Driver
+// ---------------------------------------------------------------------------
+
+inline double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+struct bench {
+  bool smoke = false;
+  std::string only;  // run one problem only (--only NAME)
+  Eigen::VectorXd ref;  // reference state of the current problem
+  std::ofstream csv;
+  int rows = 0;
+
+  /// Warm-up, then the minimum CPU time of 3 runs (smoke: one run, no warm-up).
+  template <class F>
+  void measure(const problem& pb, const std::string& solver, const std::string& method, const std::string& setting,
+               F&& f) {
+    run_result r;
+    double best = 1e300;
+    const int reps = smoke ? 1 : 3;
+    if (!smoke) r = f();
+    for (int i = 0; i < reps; ++i) {
+      const double t0 = cpu_now();
+      r = f();
+      best = std::min(best, cpu_now() - t0);
+      if (best > 20) break;  // a very slow point: one timing is enough
+    }
+    const double err = r.ok ? state_error(r.y, ref) : 1e300;
+    csv << pb.name << ',' << solver << ',' << method << ',' << setting << ',' << err << ',' << best << ','
+        << r.steps << ',' << r.newton << ',' << r.fact << '\n';
+    csv.flush();
+    ++rows;
+    std::printf("%-9s %-8s %-14s %-12s error %-11.3e cpu %-10.3e steps %ld\n", pb.name.c_str(), solver.c_str(),
+                method.c_str(), setting.c_str(), err, best, r.steps);
+    std::fflush(stdout);
+  }
+
+  template <class Scheme>
+  void pradis_sweeps(const problem& pb, Scheme scheme, const std::string& method, bool fixed) {
+    const std::vector<double> tols = smoke ? std::vector<double>{1e-2}
+                                           : std::vector<double>{1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7};
+    for (double tol : tols) {
+      char s[32];
+      std::snprintf(s, sizeof s, "tol=%.0e", tol);
+      measure(pb, "pradis", method, s, [&] { return run_pradis(pb, scheme, {.error_control = true, .tol = tol}); });
+    }
+    if (!fixed) return;
+    // Fixed-step sweep: h from 1e-2 (pendulum) / 1e-3 (stiff) down by factors of 4.
+    const double h0 = pb.name == "stiff" ? 1e-3 : 1e-2;
+    const int nh = smoke ? 1 : (pb.name == "stiff" ? 4 : 5);
+    for (int k = 0; k < nh; ++k) {
+      const double h = h0 / std::pow(4.0, k);
+      char s[32];
+      std::snprintf(s, sizeof s, "h=%.2e", h);
+      measure(pb, "pradis", method + "-fixed", s,
+              [&] { return run_pradis(pb, scheme, {.error_control = false, .h = h}); });
+    }
+  }
+
+  void peers(const problem& pb) {
+    const std::vector<double> tols =
+        smoke ? std::vector<double>{1e-3} : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+    for (double tol : tols) {
+      char s[32];
+      std::snprintf(s, sizeof s, "tol=%.0e", tol);
+#ifdef PRADIS_WP_SUNDIALS
+      measure(pb, "IDA", "BDF", s, [&] { return run_ida(pb, tol); });
+      measure(pb, "CVODE", "BDF", s, [&] { return run_cvode(pb, tol); });
+#endif
+#ifdef PRADIS_WP_BOOST
+#ifdef PRADIS_WP_ROSENBROCK4
+      measure(pb, "odeint", "rosenbrock4", s, [&] { return run_rosenbrock4(pb, tol); });
+#endif
+      measure(pb, "odeint", "dopri5", s, [&] { return run_dopri5(pb, tol); });
+#endif
+      (void)s;
+    }
+  }
+
+  void all() {
+    csv << "problem,solver,method,setting,error,cpu_s,steps,newton_iters,factorizations\n";
+    problem chain = fpu();
+    chain.exact = [&chain] { return rk4_reference(chain, 1e-5); };
+    for (const problem& pb : {pendulum(), stiff(), chain}) {
+      if (!only.empty() && pb.name != only) continue;
+      ref = pb.exact();
+      pradis_sweeps(pb, pradis::stoermer{}, "Stoermer", true);
+      pradis_sweeps(pb, pradis::newmark{}, "Newmark", true);
+      pradis_sweeps(pb, pradis::hht(-0.1), "HHT-0.1", false);
+      pradis_sweeps(pb, pradis::generalized_alpha(0.0), "GA-rho0", true);
+      pradis_sweeps(pb, pradis::generalized_alpha(0.8), "GA-rho0.8", false);
+      peers(pb);
+    }
+  }
+};
+
+}  // namespace wp
+
+int main(int argc, char** argv) {
+  wp::bench b;
+  std::string out = "docs/data/work_precision.csv";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--smoke") b.smoke = true;
+    else if (a == "--out" && i + 1 < argc) out = argv[++i];
+    else if (a == "--only" && i + 1 < argc) b.only = argv[++i];
+    else {
+      std::cerr << "usage: work_precision [--smoke] [--out FILE] [--only pendulum|stiff|fpu]\n";
+      return 2;
+    }
+  }
+  b.csv.open(out);
+  if (!b.csv) {
+    std::cerr << "cannot write " << out << "\n";
+    return 1;
+  }
+  // Self-check of the reference: the pendulum period is 4 K / w = 2.367841947576237 s.
+  {
+    const double k = std::sqrt(0.5), w = std::sqrt(wp::pend_g / wp::pend_l);
+    const double period = 4 * wp::elliptic_k(k) / w;
+    if (std::abs(period - 2.367841947576237) > 1e-12) {
+      std::cerr << "pendulum reference broken: period " << period << "\n";
+      return 1;
+    }
+  }
+#if !defined(PRADIS_WP_SUNDIALS) || !defined(PRADIS_WP_BOOST)
+  std::cerr << "note: built without"
+#ifndef PRADIS_WP_SUNDIALS
+            << " SUNDIALS"
+#endif
+#ifndef PRADIS_WP_BOOST
+            << " Boost.Odeint"
+#endif
+            << " (those peers are skipped)\n";
+#endif
+  b.all();
+  std::printf("%d rows written to %s\n", b.rows, out.c_str());
+  return b.rows > 0 ? 0 : 1;
+}
