@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Main job: installs what it needs (Debian 12, as root; idempotent), builds the
-# pradis examples and simulates the default model, the two-body system of the
-# PRADIS element developer's manual (section 3.6.9), writing out/two_bodies.csv
-# and out/two_bodies.png.
+# `pradis` command and runs its built-in example model, the two-body system of
+# the PRADIS element developer's manual (section 3.6.9), writing out/two_bodies.csv
+# and the plot out/two_bodies.*.png. Extra arguments go to `pradis run`
+# (e.g. a model file: scripts/run_example.sh examples/models/simple_pendulum.prd).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
@@ -11,6 +12,6 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
     ca-certificates cmake g++ make libeigen3-dev gnuplot-nox
 fi
 cmake -S . -B build/example -DCMAKE_BUILD_TYPE=Release \
-  -DPRADIS_BUILD_TESTS=OFF -DPRADIS_BUILD_BENCH=OFF -DPRADIS_BUILD_EXAMPLES=ON
-cmake --build build/example -j"$(nproc)" --target two_bodies
-./build/example/examples/two_bodies out
+  -DPRADIS_BUILD_TESTS=OFF -DPRADIS_BUILD_BENCH=OFF -DPRADIS_BUILD_EXAMPLES=ON -DPRADIS_BUILD_APPS=ON
+cmake --build build/example -j"$(nproc)" --target pradis_cli
+./build/example/apps/pradis run "$@" -o out

@@ -54,6 +54,12 @@ class table {
   /// gnuplot (which must be on PATH). Writes the gnuplot script next to the
   /// image (`<png>.gp`) and reads the data from `csv` (written by write_csv).
   void plot_png(const std::string& csv, const std::string& png, const std::string& title) const {
+    // Paths go into a gnuplot script and a shell command in single quotes: refuse
+    // characters that would end the quoting rather than escape them.
+    for (const std::string* s : {&csv, &png})
+      if (s->find_first_of("'\"\n\\`$") != std::string::npos)
+        throw error(error_code::io_error, "cannot plot to or from '" + *s +
+                                              "': the path contains a quote, backslash, $, backquote or newline");
     const std::string script = png + ".gp";
     {
       std::ofstream g(script);
@@ -62,10 +68,10 @@ class table {
       g << "set datafile separator ','\n"
         << "set terminal pngcairo size 900," << 260 * n + 60 << " font 'sans,10'\n"
         << "set output '" << png << "'\n"
-        << "set multiplot layout " << n << ",1 title '" << title << "'\n"
+        << "set multiplot layout " << n << ",1 title '" << label(title) << "'\n"
         << "set grid\nset key off\n";
       for (std::size_t c = 0; c < n; ++c) {
-        g << "set ylabel '" << names_[c] << "'\n";
+        g << "set ylabel '" << label(names_[c]) << "'\n";
         if (c + 1 == n) g << "set xlabel 't [s]'\n";
         g << "plot '" << csv << "' using 1:" << c + 2 << " every ::1 with lines lw 2\n";
       }
@@ -77,6 +83,12 @@ class table {
   }
 
  private:
+  /// A label safe inside single quotes in a gnuplot script.
+  static std::string label(const std::string& s) {
+    std::string o;
+    for (char ch : s) o += (ch == '\'' || ch == '\n' || ch == '\\') ? ' ' : ch;
+    return o;
+  }
   static std::string quote(const std::string& s) {
     if (s.find_first_of(",\"") == std::string::npos) return s;
     std::string o = "\"";

@@ -1,0 +1,225 @@
+// pradis: the command-line runner of the pradis kernel, with every element of
+// the built-in library compiled in.
+//
+//   pradis run [FILE] [-o DIR] [--no-plot] [-q]   run a model file (no FILE: the built-in example)
+//   pradis list                                   catalog of elements and programs
+//   pradis help NAME                              reference of an element or program
+//   pradis check NAME [--points N] [--seed S]     finite-difference Jacobian check of an element
+//
+// Exit status: 0 success, 1 error in the model or the run (or a wrong Jacobian), 2 bad command line.
+
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "pradis/lang/lang.hpp"
+
+namespace {
+
+constexpr const char* main_usage =
+    "usage: pradis <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  run [FILE] [-o DIR] [--no-plot] [-q]   run a model file (without FILE: the built-in two-body example)\n"
+    "  list                                   catalog of element models, integration, output and display programs\n"
+    "  help NAME                              full reference of an element model or a program\n"
+    "  check NAME [--points N] [--seed S]     finite-difference Jacobian check of an element\n"
+    "\n"
+    "`pradis <command> --help` describes one command. The model language: docs/language.md.\n";
+
+constexpr const char* run_usage =
+    "usage: pradis run [FILE] [-o DIR] [--no-plot] [-q]\n"
+    "\n"
+    "Runs the model file FILE: builds the model, runs the stages of $RUN, executes\n"
+    "$PRINT, $REPLACE, $SAVE and $RESTORE in file order, and writes every output of\n"
+    "#OUTPUT to DIR/<name>.csv (<name> = FILE without its extension). 'TABL writes\n"
+    "DIR/<name>.<label>.csv, 'DISP also DIR/<name>.<label>.png (with gnuplot).\n"
+    "Without FILE, runs the built-in example: the manual's two-body system\n"
+    "(examples/models/two_bodies.prd).\n"
+    "\n"
+    "options:\n"
+    "  -o DIR      output directory (default: the current directory); created if needed\n"
+    "  --no-plot   do not call gnuplot: 'DISP writes its CSV only\n"
+    "  -q          quiet: print errors only\n"
+    "\n"
+    "Errors in the file are reported as `file:line:column: error: message` with the\n"
+    "offending line; the exit status is then 1.\n";
+
+constexpr const char* list_usage =
+    "usage: pradis list\n\nPrints the catalog: element models, integration programs, output programs and\n"
+    "display programs, one line each.\n";
+constexpr const char* help_usage =
+    "usage: pradis help NAME\n\nPrints the full reference of the element model or program NAME (case-insensitive):\n"
+    "for an element its passport, nodes, parameters, work vector and special situations,\n"
+    "generated from the element's own passport and help text.\n";
+constexpr const char* check_usage =
+    "usage: pradis check NAME [--points N] [--seed S] [--failures-only]\n\n"
+    "Checks the Jacobian of element NAME (with its example parameters) against central\n"
+    "finite differences at N random admissible states (default 3), printing for each\n"
+    "state the flows and the table of numerical versus analytical derivatives (the\n"
+    "manual's section 3.6.8 harness). Exit status 1 if any entry is wrong.\n";
+
+bool is_help(const std::string& a) { return a == "--help" || a == "-h"; }
+
+int usage_error(const std::string& msg, const char* usage) {
+  std::cerr << "pradis: " << msg << "\n\n" << usage;
+  return 2;
+}
+
+bool parse_int(const std::string& s, long lo, long hi, long& out) {
+  try {
+    std::size_t n = 0;
+    const long v = std::stol(s, &n);
+    if (n != s.size() || v < lo || v > hi) return false;
+    out = v;
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+int cmd_run(const std::vector<std::string>& args) {
+  std::string file, dir = ".";
+  bool plot = true, quiet = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (is_help(a)) {
+      std::cout << run_usage;
+      return 0;
+    }
+    if (a == "-o") {
+      if (i + 1 >= args.size()) return usage_error("-o needs a directory", run_usage);
+      dir = args[++i];
+    } else if (a == "--no-plot") {
+      plot = false;
+    } else if (a == "-q") {
+      quiet = true;
+    } else if (!a.empty() && a[0] == '-') {
+      return usage_error("unknown option '" + a + "' of run", run_usage);
+    } else if (file.empty()) {
+      file = a;
+    } else {
+      return usage_error("run takes one model file, got '" + file + "' and '" + a + "'", run_usage);
+    }
+  }
+  try {
+    pradis::lang::ast::program prog;
+    std::string stem;
+    if (file.empty()) {
+      if (!quiet)
+        std::cout << "pradis: no model file given: running the built-in example, the manual's two-body system ("
+                  << pradis::lang::builtin_example_name << ")\n";
+      prog = pradis::lang::parse_string(std::string(pradis::lang::builtin_example),
+                                        std::string(pradis::lang::builtin_example_name));
+      stem = "two_bodies";
+    } else {
+      prog = pradis::lang::parse_file(file);
+      stem = std::filesystem::path(file).stem().string();
+      if (stem.empty()) stem = "model";
+    }
+    pradis::lang::session s(std::move(prog));
+    s.run({.output_dir = dir, .stem = stem, .plot = plot, .write_files = true, .log = quiet ? nullptr : &std::cout});
+    return 0;
+  } catch (const pradis::lang::lang_error& e) {
+    std::cerr << e.what() << '\n' << e.excerpt();
+    return 1;
+  } catch (const pradis::error& e) {
+    std::cerr << "pradis: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "pradis: error: " << e.what() << '\n';
+    return 1;
+  }
+}
+
+int cmd_list(const std::vector<std::string>& args) {
+  if (!args.empty() && is_help(args[0])) {
+    std::cout << list_usage;
+    return 0;
+  }
+  if (!args.empty()) return usage_error("list takes no arguments", list_usage);
+  pradis::lang::print_catalog(std::cout);
+  return 0;
+}
+
+int cmd_help(const std::vector<std::string>& args) {
+  if (args.empty() || is_help(args[0])) {
+    std::cout << help_usage;
+    return args.empty() ? 2 : 0;
+  }
+  if (args.size() != 1) return usage_error("help takes one NAME", help_usage);
+  return pradis::lang::print_reference(std::cout, std::cerr, args[0]) ? 0 : 1;
+}
+
+int cmd_check(const std::vector<std::string>& args) {
+  pradis::lang::check_options o;
+  std::string name;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    long v = 0;
+    if (is_help(a)) {
+      std::cout << check_usage;
+      return 0;
+    }
+    if (a == "--points" || a == "--seed") {
+      if (i + 1 >= args.size() ||
+          !parse_int(args[i + 1], a == "--points" ? 1 : 0, a == "--points" ? 100000 : 4294967295L, v))
+        return usage_error(a + " needs a whole number" + (a == "--points" ? " from 1 to 100000" : " >= 0"),
+                           check_usage);
+      ++i;
+      if (a == "--points")
+        o.points = static_cast<int>(v);
+      else
+        o.seed = static_cast<unsigned>(v);
+    } else if (a == "--failures-only") {
+      o.verbose = false;
+    } else if (!a.empty() && a[0] == '-') {
+      return usage_error("unknown option '" + a + "' of check", check_usage);
+    } else if (name.empty()) {
+      name = a;
+    } else {
+      return usage_error("check takes one element NAME", check_usage);
+    }
+  }
+  if (name.empty()) return usage_error("check needs an element NAME", check_usage);
+  try {
+    return pradis::lang::check_by_name(std::cout, std::cerr, name, o);
+  } catch (const pradis::error& e) {
+    std::cerr << "pradis: error: " << e.what() << '\n';
+    return 1;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty()) {
+      std::cerr << main_usage;
+      return 2;
+    }
+    const std::string cmd = args.front();
+    args.erase(args.begin());
+    if (is_help(cmd)) {
+      std::cout << main_usage;
+      return 0;
+    }
+    if (cmd == "--version") {
+      std::cout << "pradis 0.1.0\n";
+      return 0;
+    }
+    if (cmd == "run") return cmd_run(args);
+    if (cmd == "list") return cmd_list(args);
+    if (cmd == "help") return cmd_help(args);
+    if (cmd == "check") return cmd_check(args);
+    return usage_error(
+        "unknown command '" + cmd + "'" + pradis::lang::did_you_mean(cmd, {"run", "list", "help", "check"}),
+        main_usage);
+  } catch (const std::exception& e) {
+    std::cerr << "pradis: internal error: " << e.what() << '\n';
+    return 1;
+  }
+}

@@ -1,0 +1,108 @@
+#pragma once
+/// \file
+/// The catalog of the model language: integration programs, their keys, output
+/// programs and display programs, each with a one-line purpose. Elements come
+/// from the element library itself (passport and help), never from a copy here.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pradis/elements/library.hpp"
+
+namespace pradis::lang {
+
+/// A program of the language other than an element: integration, output or display.
+struct program_info {
+  std::string_view name;
+  std::string_view purpose;
+  std::string_view usage;  ///< example call
+  std::string_view keys;   ///< one "KEY - meaning (default)" per line
+};
+
+/// Integration programs ($RUN).
+inline const std::vector<program_info>& integration_programs() {
+  static const std::vector<program_info> v{
+      {"SHTERM", "Stoermer scheme of PRADIS (Newmark beta = 1/2, gamma = 1): first order, dissipative",
+       "Calculation 'SHTERM (END=1, SMAX=1e-3)", ""},
+      {"NEWMARK", "Newmark scheme, velocity as the Newton unknown (default average acceleration, second order)",
+       "Calculation 'NEWMARK (END=1, BETA=0.25, GAMMA=0.5)",
+       "BETA - displacement weight, 0 < BETA <= 1/2 (0.25)\nGAMMA - velocity weight, 1/2 <= GAMMA <= 1 (0.5)\n"},
+  };
+  return v;
+}
+
+/// Keys every integration program accepts.
+inline std::string_view common_run_keys() {
+  return "END - end time of the stage (required)\n"
+         "OUT - output interval (0: after every step) (0)\n"
+         "SMAX - maximum step (0.01)\n"
+         "SMIN - minimum step; below it the run fails (1e-11)\n"
+         "IGNORE - 1: ignore steps recommended by elements (0)\n"
+         "DABSU - Newton: absolute tolerance on the velocity correction (0.01)\n"
+         "DRLTU - Newton: relative tolerance on the velocity correction (0.001)\n"
+         "DABSI - Newton: absolute tolerance on the residual per DOF (0.1)\n"
+         "DRLTI - Newton: relative tolerance on the residual per DOF (0.001)\n"
+         "ITR - Newton: maximum iterations per step (5)\n"
+         "SECOND - 1: force at least a second Newton iteration (0)\n"
+         "DABSX - error control: absolute tolerance of the local error, velocity units (0.1); "
+         "giving DABSX, DRLTX, CONTROL or PREDICT turns error control on\n"
+         "DRLTX - error control: relative tolerance of the local error (0.001)\n"
+         "CONTROL - error control: no error-driven step reduction below this step (0)\n"
+         "PREDICT - error control: 1 = linear prediction of the acceleration in the estimate (0)\n";
+}
+
+/// Keys of PRADIS integration programs that pradis does not implement yet.
+inline const std::vector<std::string>& unimplemented_run_keys() {
+  static const std::vector<std::string> v{"WEIGHT", "SAVE", "OPTIM", "CHECKM", "DEBUG", "FLAG", "SCHEME"};
+  return v;
+}
+
+/// Output programs (#OUTPUT).
+inline const std::vector<program_info>& output_programs() {
+  static const std::vector<program_info> v{
+      {"X", "potential of a node (order 1 displacement, 2 velocity, 3 acceleration) or a work-vector entry",
+       "Body 2 X 'X (4; 1)    Link force 'X (W:Connection(3); 1)", ""},
+      {"NSTEP", "number of accepted integration steps so far", "Steps 'NSTEP ()", ""},
+      {"NITER", "Newton iterations of the last accepted step", "Iterations 'NITER ()", ""},
+      {"STEP", "size of the last accepted step", "Step 'STEP ()", ""},
+      {"NREJ", "number of rejected (cut) steps so far", "Rejected 'NREJ ()", ""},
+      {"NFACT", "number of numeric factorisations so far", "Factorisations 'NFACT ()", ""},
+      {"NITTOT", "total Newton iterations so far", "Newton 'NITTOT ()", ""},
+  };
+  return v;
+}
+
+/// Display programs ($PRINT).
+inline const std::vector<program_info>& display_programs() {
+  static const std::vector<program_info> v{
+      {"TABL", "table of outputs over time, written as CSV", "Table 'TABL (Body 2 X, Body 2 Y; START=0, END=1)",
+       "START - first time shown (start of the run)\nEND - last time shown (end of the run)\n"},
+      {"DISP", "graphs of outputs over time, one panel each, written as PNG (needs gnuplot)", "Graphs 'DISP ()",
+       "START - first time shown (start of the run)\nEND - last time shown (end of the run)\n"},
+  };
+  return v;
+}
+
+/// Catalog names of every element type of the library, in library order.
+inline std::vector<std::string> element_names() {
+  std::vector<std::string> out;
+  library_model::for_each_type([&]<class E>(std::type_identity<E>) { out.emplace_back(E::passport.name); });
+  return out;
+}
+
+/// Names of a program list.
+inline std::vector<std::string> names_of(const std::vector<program_info>& v) {
+  std::vector<std::string> out;
+  for (const auto& p : v) out.emplace_back(p.name);
+  return out;
+}
+
+/// Finds a program by name in a list (nullptr if absent).
+inline const program_info* find_program(const std::vector<program_info>& v, std::string_view name) {
+  for (const auto& p : v)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+}  // namespace pradis::lang

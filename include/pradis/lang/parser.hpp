@@ -1,0 +1,445 @@
+#pragma once
+/// \file
+/// Parser of the model language: tokens to ast::program (grammar in docs/language.md).
+/// $INCLUDE is resolved here (relative to the including file), so the program
+/// holds the merged contents of every file; locations keep their own file.
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pradis/lang/ast.hpp"
+#include "pradis/lang/lexer.hpp"
+
+namespace pradis::lang {
+
+/// Reads an included file by its (resolved) path; nothing if it cannot be read.
+using file_loader = std::function<std::optional<std::string>(const std::string& path)>;
+
+/// Reads a file from disk (binary, whole).
+inline std::optional<std::string> read_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return std::nullopt;
+  std::ostringstream os;
+  os << f.rdbuf();
+  if (f.bad()) return std::nullopt;
+  return os.str();
+}
+
+/// Section keywords, for suggestions.
+inline const std::vector<std::string>& section_names() {
+  static const std::vector<std::string> v{"DATA",    "FRAGMENT", "RUN",     "PRINT", "REPLACE",
+                                          "RESTORE", "SAVE",     "INCLUDE", "END",   "SHOW"};
+  return v;
+}
+
+class parser {
+ public:
+  static constexpr int max_include_depth = 16;
+
+  parser(std::shared_ptr<const source_file> src, ast::program& prog, const file_loader& load, int depth = 0)
+      : src_(std::move(src)), t_(lex(src_)), prog_(prog), load_(load), depth_(depth) {}
+
+  /// Parses the whole source into the program. Returns true if $END was met.
+  bool parse() {
+    for (;;) {
+      skip_newlines();
+      if (cur().kind == tok::eof) break;
+      const token& t = cur();
+      if (t.kind != tok::section) {
+        if (t.kind == tok::subsection) fail(t.loc, "subsection #" + t.text + " outside $FRAGMENT");
+        fail(t.loc, "expected a section ($DATA, $FRAGMENT, $RUN, ...), found " + describe(t));
+      }
+      ++p_;
+      const std::string& s = t.text;
+      if (s == "END") {
+        prog_.end = t.loc;
+        return true;  // the rest of the file is ignored
+      }
+      if (s == "DATA")
+        data_section(t);
+      else if (s == "FRAGMENT")
+        fragment_section(t);
+      else if (s == "RUN" || s == "PRINT")
+        call_section(t, s == "RUN" ? ast::action::kind::run : ast::action::kind::print);
+      else if (s == "REPLACE")
+        replace_section(t);
+      else if (s == "RESTORE" || s == "SAVE")
+        path_section(t);
+      else if (s == "INCLUDE")
+        include_section(t);
+      else if (s == "SHOW")
+        fail(t.loc, "section $SHOW is not implemented by pradis yet");
+      else
+        fail(t.loc, "unknown section $" + s + did_you_mean(s, section_names()));
+    }
+    prog_.end = cur().loc;
+    return false;
+  }
+
+ private:
+  // ---- token helpers -----------------------------------------------------------
+  const token& cur() const { return t_[p_]; }
+  const token& next() const { return t_[std::min(p_ + 1, t_.size() - 1)]; }
+  bool at(tok k) const { return cur().kind == k; }
+  bool at_statement_end() const {
+    const tok k = cur().kind;
+    return k == tok::newline || k == tok::eof || k == tok::section || k == tok::subsection;
+  }
+  bool at_block_end() const { return at(tok::eof) || at(tok::section); }
+  void skip_newlines() {
+    while (at(tok::newline)) ++p_;
+  }
+  [[noreturn]] static void fail(const location& l, const std::string& msg) { throw lang_error(l, msg); }
+  void optional_colon() {
+    if (at(tok::colon)) ++p_;
+  }
+  void end_statement(const char* what) {
+    if (!at_statement_end()) fail(cur().loc, "unexpected " + describe(cur()) + " after " + what);
+  }
+  static bool name_start(const std::string& w) {
+    const auto c = static_cast<unsigned char>(w[0]);
+    return detail::is_alpha(w[0]) || c >= 0x80;
+  }
+
+  // ---- sections ----------------------------------------------------------------
+  void no_actions_yet(const token& t) {
+    if (!prog_.actions.empty())
+      fail(t.loc, "section $" + t.text +
+                      " after $RUN/$PRINT/$REPLACE: the model must be complete before the first "
+                      "run (use $REPLACE to change $DATA values between stages)");
+  }
+
+  void data_section(const token& t) {
+    no_actions_yet(t);
+    optional_colon();
+    definitions(prog_.data);
+  }
+
+  void replace_section(const token& t) {
+    optional_colon();
+    ast::action a;
+    a.what = ast::action::kind::replace;
+    a.loc = t.loc;
+    definitions(a.definitions);
+    if (a.definitions.empty()) fail(t.loc, "$REPLACE without any `Name = values` line");
+    prog_.actions.push_back(std::move(a));
+  }
+
+  void definitions(std::vector<ast::definition>& out) {
+    for (;;) {
+      skip_newlines();
+      if (at_block_end()) return;
+      if (at(tok::subsection)) fail(cur().loc, "subsection #" + cur().text + " outside $FRAGMENT");
+      ast::definition d;
+      d.loc = cur().loc;
+      d.name = words_until(tok::equals, "a name followed by '=' (Name = value, value, ...)");
+      if (!name_start(d.name)) fail(d.loc, "a $DATA name must start with a letter: '" + d.name + "'");
+      ++p_;  // '='
+      for (;;) {
+        if (at_statement_end()) fail(cur().loc, "expected a value after '=' or ',', found " + describe(cur()));
+        d.values.push_back(value());
+        if (at(tok::comma)) {
+          ++p_;
+          skip_newlines();  // a trailing comma continues the list on the next line
+          continue;
+        }
+        break;
+      }
+      end_statement("the value list (separate values with ',')");
+      out.push_back(std::move(d));
+    }
+  }
+
+  void fragment_section(const token& t) {
+    no_actions_yet(t);
+    ast::fragment f;
+    f.loc = t.loc;
+    if (at(tok::word)) f.name = upper(words_until_any("the fragment name"));
+    optional_colon();
+    end_statement("the fragment header");
+    for (;;) {
+      skip_newlines();
+      if (at_block_end()) break;
+      if (!at(tok::subsection))
+        fail(cur().loc, "expected a subsection (#BASE, #STRUCTURE, #EXTERNAL, #OUTPUT), found " + describe(cur()));
+      const token s = cur();
+      ++p_;
+      optional_colon();
+      if (s.text == "STRUCTURE") {
+        f.has_structure = true;
+        calls(f.structure, true);
+      } else if (s.text == "OUTPUT") {
+        calls(f.outputs, true);
+      } else if (s.text == "BASE") {
+        while (!at(tok::subsection) && !at_block_end()) ++p_;  // accepted and ignored (one built-in library)
+      } else if (s.text == "EXTERNAL") {
+        f.has_external = true;
+        f.external_loc = s.loc;
+        for (;;) {
+          skip_newlines();
+          if (at(tok::subsection) || at_block_end()) break;
+          if (at(tok::comma)) {
+            ++p_;
+            continue;
+          }
+          f.external.push_back(value());
+        }
+      } else if (s.text == "MAP") {
+        fail(s.loc, "subsection #MAP is not implemented by pradis yet");
+      } else {
+        fail(s.loc, "unknown subsection #" + s.text +
+                        did_you_mean(s.text, {"BASE", "STRUCTURE", "EXTERNAL", "OUTPUT", "MAP"}));
+      }
+    }
+    if (!f.has_structure)
+      fail(f.loc, "$FRAGMENT" + (f.name.empty() ? std::string() : " " + f.name) + " has no #STRUCTURE subsection");
+    prog_.fragments.push_back(std::move(f));
+  }
+
+  void call_section(const token& t, ast::action::kind k) {
+    optional_colon();
+    std::vector<ast::call> cs;
+    calls(cs, false);
+    if (cs.empty())
+      fail(t.loc, "$" + t.text + " lists no program calls (expected `Label '" +
+                      (k == ast::action::kind::run ? "SHTERM (END=1)`" : "TABL ()`") + ")");
+    for (auto& c : cs) {
+      ast::action a;
+      a.what = k;
+      a.loc = c.loc;
+      a.stage = std::move(c);
+      prog_.actions.push_back(std::move(a));
+    }
+  }
+
+  std::string path_argument(const token& t) {
+    optional_colon();
+    skip_newlines();
+    if (!at(tok::string))
+      fail(cur().loc, "$" + t.text + " needs a file name in double quotes, found " + describe(cur()));
+    std::string path = cur().text;
+    ++p_;
+    end_statement("the file name");
+    if (path.empty()) fail(t.loc, "$" + t.text + " with an empty file name");
+    return path;
+  }
+
+  void path_section(const token& t) {
+    ast::action a;
+    a.what = t.text == "SAVE" ? ast::action::kind::save : ast::action::kind::restore;
+    a.loc = t.loc;
+    a.path = path_argument(t);
+    prog_.actions.push_back(std::move(a));
+  }
+
+  void include_section(const token& t) {
+    const std::string path = path_argument(t);
+    if (depth_ + 1 > max_include_depth)
+      fail(t.loc, "$INCLUDE nested more than " + std::to_string(max_include_depth) +
+                      " levels deep (does a file include itself?)");
+    std::filesystem::path p(path);
+    if (p.is_relative()) p = std::filesystem::path(src_->name).parent_path() / p;
+    const std::string resolved = p.lexically_normal().string();
+    std::error_code ec;
+    std::optional<std::string> text =
+        load_ && !std::filesystem::is_directory(resolved, ec) ? load_(resolved) : std::nullopt;
+    if (!text) fail(t.loc, "cannot read the included file '" + resolved + "'");
+    auto src = std::make_shared<const source_file>(source_file{resolved, std::move(*text)});
+    parser sub(src, prog_, load_, depth_ + 1);
+    sub.parse();  // $END in an included file ends that file only
+  }
+
+  // ---- statements -----------------------------------------------------------------
+  /// Words up to a token of kind `stop` (not consumed... it is left current), joined by one blank.
+  std::string words_until(tok stop, const char* expected) {
+    std::string s;
+    while (at(tok::word)) {
+      if (!s.empty()) s += ' ';
+      s += cur().text;
+      ++p_;
+    }
+    if (s.empty() || !at(stop)) fail(cur().loc, std::string("expected ") + expected + ", found " + describe(cur()));
+    return s;
+  }
+  std::string words_until_any(const char*) {
+    std::string s;
+    while (at(tok::word)) {
+      if (!s.empty()) s += ' ';
+      s += cur().text;
+      ++p_;
+    }
+    return s;
+  }
+
+  /// Statements `[Label] 'NAME [(args)]`, one per line, until a (sub)section or EOF.
+  void calls(std::vector<ast::call>& out, bool in_fragment) {
+    for (;;) {
+      skip_newlines();
+      if (at_block_end() || (in_fragment && at(tok::subsection))) return;
+      if (at(tok::subsection)) fail(cur().loc, "subsection #" + cur().text + " outside $FRAGMENT");
+      out.push_back(call());
+    }
+  }
+
+  ast::call call() {
+    ast::call c;
+    c.loc = cur().loc;
+    c.label = words_until_any("");
+    if (!at(tok::quote))
+      fail(cur().loc, c.label.empty() ? "expected a statement `Label 'NAME (...)`, found " + describe(cur())
+                                      : "expected \"'\" and a model or program name after '" + c.label + "', found " +
+                                            describe(cur()));
+    ++p_;
+    if (!at(tok::word) || !name_start(cur().text))
+      fail(cur().loc, "expected a model or program name after \"'\", found " + describe(cur()));
+    c.program_loc = cur().loc;
+    c.program = upper(cur().text);
+    ++p_;
+    c.args_loc = c.program_loc;
+    if (at(tok::lparen)) {
+      c.args_loc = cur().loc;
+      ++p_;
+      c.args = arguments(c.args_loc);
+    }
+    end_statement(("the call of '" + c.program + "' (one statement per line)").c_str());
+    return c;
+  }
+
+  ast::groups arguments(const location& open) {
+    ast::groups g(1);
+    for (;;) {
+      skip_newlines();
+      const token& t = cur();
+      switch (t.kind) {
+        case tok::rparen:
+          ++p_;
+          return g;
+        case tok::semicolon:
+          ++p_;
+          g.emplace_back();
+          continue;
+        case tok::eof:
+        case tok::section:
+        case tok::subsection:
+          fail(open, "missing ')' for this '(' (found " + describe(t) + " at " + std::to_string(t.loc.line) + ":" +
+                         std::to_string(t.loc.col) + ")");
+        case tok::word:
+          break;
+        case tok::quote:
+          fail(open, "missing ')' for this '(' (a new statement starts at " + std::to_string(t.loc.line) + ":" +
+                         std::to_string(t.loc.col) + ")");
+        default:
+          fail(t.loc, "expected a number, a name or KEY=value, found " + describe(t));
+      }
+      g.back().push_back(item());
+      if (at(tok::comma)) {
+        ++p_;
+        skip_newlines();
+        if (!at(tok::word)) fail(cur().loc, "expected a value after ',', found " + describe(cur()));
+      }
+    }
+  }
+
+  ast::item item() {
+    const token& t = cur();
+    if (next().kind == tok::equals) {
+      ast::item k;
+      k.what = ast::item::kind::keyed;
+      k.loc = t.loc;
+      k.text = upper(t.text);
+      if (!name_start(t.text)) fail(t.loc, "expected a key name before '=', found " + describe(t));
+      p_ += 2;
+      if (!at(tok::word)) fail(cur().loc, "expected a value after '" + k.text + "=', found " + describe(cur()));
+      k.value.push_back(value());
+      return k;
+    }
+    if ((t.text == "W" || t.text == "w") && next().kind == tok::colon) {
+      ast::item w;
+      w.what = ast::item::kind::work;
+      w.loc = t.loc;
+      p_ += 2;
+      w.text = words_until(tok::lparen, "an element name and '(' after 'W:' (W:Name(k))");
+      ++p_;
+      w.index_loc = cur().loc;
+      if (!at(tok::word)) fail(cur().loc, "expected the work-vector index k in W:Name(k), found " + describe(cur()));
+      const auto k = parse_number(cur().text);
+      if (!k || !(*k >= 1 && *k <= 1e9) || *k != std::floor(*k))  // range first: no UB in the cast
+        fail(cur().loc, "the work-vector index in W:Name(k) must be a whole number >= 1, found '" + cur().text + "'");
+      w.index = static_cast<int>(*k);
+      ++p_;
+      if (!at(tok::rparen))
+        fail(cur().loc,
+             "expected ')' after W:" + w.text + "(" + std::to_string(w.index) + ", found " + describe(cur()));
+      ++p_;
+      return w;
+    }
+    return value();
+  }
+
+  /// A number, or a $DATA name (words up to the next punctuation), optionally negated.
+  ast::item value() {
+    const token& t = cur();
+    ast::item v;
+    v.loc = t.loc;
+    if (t.kind != tok::word) fail(t.loc, "expected a number or a name, found " + describe(t));
+    if (looks_numeric(t.text)) {
+      const auto x = parse_number(t.text);
+      if (!x) fail(t.loc, "unparsable number '" + t.text + "'");
+      v.number = *x;
+      ++p_;
+      return v;
+    }
+    v.what = ast::item::kind::name;
+    std::string first = t.text;
+    if (first[0] == '-' || first[0] == '+') {
+      v.negate = first[0] == '-';
+      first.erase(0, 1);
+    }
+    if (first.empty() || !name_start(first)) fail(t.loc, "expected a number or a name, found '" + t.text + "'");
+    v.text = first;
+    ++p_;
+    while (at(tok::word)) {
+      v.text += ' ' + cur().text;
+      ++p_;
+    }
+    return v;
+  }
+
+  std::shared_ptr<const source_file> src_;
+  std::vector<token> t_;
+  std::size_t p_ = 0;
+  ast::program& prog_;
+  const file_loader& load_;
+  int depth_ = 0;
+};
+
+/// Parses a model from a string (`name` is used in messages and to resolve
+/// $INCLUDE). Throws lang_error. `load` reads included files (default: from disk).
+inline ast::program parse_string(std::string text, std::string name = "<input>", const file_loader& load = read_file) {
+  ast::program prog;
+  auto src = std::make_shared<const source_file>(source_file{std::move(name), std::move(text)});
+  parser p(src, prog, load);
+  prog.has_end = p.parse();
+  if (!prog.has_end) throw lang_error(prog.end, "missing $END at the end of the file (is the file truncated?)");
+  return prog;
+}
+
+/// Parses a model file from disk. Throws lang_error (also if it cannot be read).
+inline ast::program parse_file(const std::string& path) {
+  std::error_code ec;
+  const bool dir = std::filesystem::is_directory(path, ec);
+  auto text = dir ? std::nullopt : read_file(path);
+  if (!text)
+    throw lang_error(location{std::make_shared<const source_file>(source_file{path, {}}), 0, 0},
+                     dir ? "this is a directory, not a model file" : "cannot read the model file");
+  return parse_string(std::move(*text), path);
+}
+
+}  // namespace pradis::lang

@@ -1,0 +1,795 @@
+#pragma once
+/// \file
+/// The builder and runner of the model language: a session turns an
+/// ast::program into a library_model (every element type of the built-in
+/// library), its outputs and its list of actions (run stages, displays,
+/// $REPLACE, $SAVE, $RESTORE), checks everything that can be checked before the
+/// run with `file:line:column` messages, then executes the actions.
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <ostream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pradis/elements/library.hpp"
+#include "pradis/integrators/newmark.hpp"
+#include "pradis/integrators/simulation.hpp"
+#include "pradis/io/table.hpp"
+#include "pradis/lang/ast.hpp"
+#include "pradis/lang/catalog.hpp"
+#include "pradis/lang/parser.hpp"
+
+namespace pradis::lang {
+
+/// How a session writes its results.
+struct run_settings {
+  std::string output_dir = ".";  ///< directory for CSV, PNG and checkpoints ($SAVE/$RESTORE paths are relative to it)
+  std::string stem = "model";    ///< prefix of the output files
+  bool plot = true;              ///< false: 'DISP writes its CSV but no PNG (no gnuplot needed)
+  bool write_files = true;       ///< false: no CSV/PNG at all (tests)
+  std::ostream* log = nullptr;   ///< progress lines (stages, files written), or none
+};
+
+/// One output variable (#OUTPUT line).
+struct output_column {
+  enum class kind { potential, work, statistic };
+  std::string label;
+  location loc;
+  kind what = kind::potential;
+  int node = 0, dof = 0, order = 1;  ///< potential: node, model DOF, 1 u / 2 v / 3 a
+  std::string element;               ///< work: instance name
+  int index = 0;                     ///< work: 1-based entry
+  std::string statistic;             ///< statistic: NSTEP, NITER, ...
+};
+
+/// What one run stage did (for the report of `pradis run`).
+struct stage_report {
+  std::string label, program;
+  double t0 = 0, t1 = 0;
+  run_statistics stats;
+};
+
+/// A model file turned into a model and a list of actions.
+class session {
+ public:
+  using sim_type = simulation<library_model, newmark>;
+  /// Largest number of element instances a model file may create.
+  static constexpr std::size_t max_elements = 200000;
+  /// Largest number of fragment instances, of outputs and of values in one list.
+  static constexpr std::size_t max_instances = 200000, max_outputs = 10000, max_list = 100000;
+
+  /// Builds the model and checks outputs and actions. Throws lang_error.
+  explicit session(ast::program prog) : prog_(std::move(prog)), model_(std::make_unique<library_model>()) {
+    build_data();
+    build_structure();
+    build_outputs();
+    check_actions();
+  }
+  session(const session&) = delete;
+  session& operator=(const session&) = delete;
+
+  /// Executes the actions in file order and writes `<stem>.csv` with every
+  /// output. Throws lang_error (model errors during the run are located at the
+  /// element's line, run failures at the stage's line).
+  void run(const run_settings& s = {}) {
+    settings_ = s;
+    if (settings_.write_files) std::filesystem::create_directories(settings_.output_dir);
+    for (const auto& a : prog_.actions) {
+      switch (a.what) {
+        case ast::action::kind::run:
+          run_stage(a.stage);
+          break;
+        case ast::action::kind::print:
+          display(a.stage);
+          break;
+        case ast::action::kind::replace:
+          replace(a);
+          break;
+        case ast::action::kind::save:
+          save(a);
+          break;
+        case ast::action::kind::restore:
+          restore(a);
+          break;
+      }
+    }
+    if (settings_.write_files && !outputs_.empty()) {
+      const std::string csv = path_in_output(settings_.stem + ".csv");
+      results_.write_csv(csv);
+      note("results: " + csv + " (" + std::to_string(results_.rows()) + " rows, " + std::to_string(outputs_.size()) +
+           " outputs)");
+      files_.push_back(csv);
+    }
+  }
+
+  /// The model (every library element type).
+  library_model& model() noexcept { return *model_; }
+  /// The outputs, in #OUTPUT order.
+  const std::vector<output_column>& outputs() const noexcept { return outputs_; }
+  /// Every output sampled over time (column order as outputs()).
+  const io::table& results() const noexcept { return results_; }
+  /// The model DOF of a node number of the file (throws std::out_of_range if the node is not used).
+  int dof_of_node(int node) const { return node_dof_.at(node); }
+  /// The current value of a $DATA name.
+  const std::vector<double>& data(const std::string& name) const { return data_.at(name).values; }
+  /// Files written by run().
+  const std::vector<std::string>& files() const noexcept { return files_; }
+  /// One report per executed stage.
+  const std::vector<stage_report>& stages() const noexcept { return reports_; }
+  /// The simulation (null before the first stage or $RESTORE).
+  const sim_type* simulation_ptr() const noexcept { return sim_.get(); }
+
+ private:
+  struct data_entry {
+    std::vector<double> values;
+    location loc;
+  };
+  struct element_record {
+    std::string name;
+    location loc;
+    std::vector<ast::item> params;
+    std::vector<double> values;
+  };
+
+  [[noreturn]] static void fail(const location& l, const std::string& msg) { throw lang_error(l, msg); }
+  void note(const std::string& s) const {
+    if (settings_.log) *settings_.log << s << '\n';
+  }
+  static std::string num(double x) {
+    std::ostringstream os;
+    os.precision(10);
+    os << x;
+    return os.str();
+  }
+
+  // ---- $DATA ----------------------------------------------------------------------
+  std::vector<std::string> data_names() const {
+    std::vector<std::string> v;
+    for (const auto& [k, e] : data_) v.push_back(k);
+    return v;
+  }
+  const data_entry& lookup(const ast::item& it) const {
+    auto f = data_.find(it.text);
+    if (f == data_.end()) fail(it.loc, "undefined $DATA name '" + it.text + "'" + did_you_mean(it.text, data_names()));
+    return f->second;
+  }
+  /// Expands numbers and $DATA names (lists in place) into values.
+  std::vector<double> expand(const std::vector<ast::item>& items, const char* where) const {
+    std::vector<double> out;
+    for (const auto& it : items) {
+      if (it.what == ast::item::kind::number) {
+        out.push_back(it.number);
+      } else if (it.what == ast::item::kind::name) {
+        const auto& v = lookup(it).values;
+        if (out.size() + v.size() > max_list)
+          fail(it.loc, "the list grows beyond " + std::to_string(max_list) + " values");
+        for (double x : v) out.push_back(it.negate ? -x : x);
+      } else {
+        fail(it.loc, std::string("only numbers and $DATA names are allowed in ") + where);
+      }
+    }
+    return out;
+  }
+  /// One number from a single item (a number or a scalar $DATA name).
+  double scalar(const ast::item& it, const std::string& what) const {
+    if (it.what == ast::item::kind::number) return it.number;
+    if (it.what != ast::item::kind::name) fail(it.loc, what + " must be a number or a $DATA name");
+    const auto& v = lookup(it).values;
+    if (v.size() != 1)
+      fail(it.loc, what + " needs one value; '" + it.text + "' is a list of " + std::to_string(v.size()));
+    return it.negate ? -v[0] : v[0];
+  }
+  int whole(const ast::item& it, const std::string& what, int lo, int hi) const {
+    const double x = scalar(it, what);
+    if (!(x >= lo && x <= hi) || x != std::floor(x))
+      fail(it.loc, what + " must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                       ", got " + num(x));
+    return static_cast<int>(x);
+  }
+
+  void build_data() {
+    for (const auto& d : prog_.data) {
+      if (auto f = data_.find(d.name); f != data_.end())
+        fail(d.loc, "$DATA name '" + d.name + "' is already defined at " + f->second.loc.str());
+      auto v = expand(d.values, "$DATA");
+      data_.emplace(d.name, data_entry{std::move(v), d.loc});
+    }
+  }
+
+  // ---- $FRAGMENT / #STRUCTURE ----------------------------------------------------------
+  /// How the nodes of a fragment being instantiated map to model DOFs.
+  struct scope {
+    std::string prefix;                            ///< instance-name prefix ("" for the main model)
+    const std::map<int, int>* external = nullptr;  ///< fragment node -> model DOF (sub-structures)
+    std::map<int, int> internal;                   ///< fragment-internal nodes -> model DOF
+    std::vector<std::string> stack;                ///< fragments being instantiated (cycle check)
+  };
+
+  int node_dof(scope& sc, int node) {
+    if (node == 0) return 0;
+    if (!sc.external) {
+      auto [it, fresh] = node_dof_.emplace(node, 0);
+      if (fresh) it->second = model_->add_dof("node " + std::to_string(node)).index;
+      return it->second;
+    }
+    if (auto e = sc.external->find(node); e != sc.external->end()) return e->second;
+    auto [it, fresh] = sc.internal.emplace(node, 0);
+    if (fresh) it->second = model_->add_dof(sc.prefix + "node " + std::to_string(node)).index;
+    return it->second;
+  }
+
+  std::vector<int> node_list(const std::vector<ast::item>& items) const {
+    std::vector<int> out;
+    for (const auto& it : items) {
+      if (it.what != ast::item::kind::number && it.what != ast::item::kind::name)
+        fail(it.loc, "a node must be a whole number >= 0 (0 is the ground)");
+      if (it.what == ast::item::kind::name && !data_.count(it.text))
+        fail(it.loc, "a node must be a whole number >= 0, and '" + it.text + "' is not a $DATA name either" +
+                         did_you_mean(it.text, data_names()));
+      out.push_back(whole(it, "a node", 0, 1000000000));
+    }
+    return out;
+  }
+
+  const ast::fragment* find_fragment(const std::string& name) const {
+    for (const auto& f : prog_.fragments)
+      if (f.name == name) return &f;
+    return nullptr;
+  }
+
+  void build_structure() {
+    const ast::fragment* main = nullptr;
+    for (const auto& f : prog_.fragments) {
+      if (!f.name.empty()) {
+        for (const auto& g : prog_.fragments)
+          if (&g != &f && g.name == f.name) fail(g.loc, "$FRAGMENT " + f.name + " is defined twice");
+        if (f.name == "" || find_element_passport(f.name))
+          fail(f.loc, "fragment name " + f.name + " is the name of a library element");
+        continue;
+      }
+      if (main)
+        fail(f.loc, "a second unnamed $FRAGMENT: the model has exactly one (name sub-structures: $FRAGMENT NAME)");
+      main = &f;
+    }
+    if (!main) fail(prog_.end, "missing section $FRAGMENT (the model: $FRAGMENT with #STRUCTURE)");
+    main_ = main;
+    scope sc;
+    instantiate(*main, sc);
+    if (model_->element_count() == 0) fail(main->loc, "the model has no elements (#STRUCTURE is empty)");
+  }
+
+  static std::optional<passport> find_element_passport(const std::string& name) {
+    std::optional<passport> p;
+    library_model::for_each_type([&]<class E>(std::type_identity<E>) {
+      if (E::passport.name == name) p = E::passport;
+    });
+    return p;
+  }
+
+  void instantiate(const ast::fragment& f, scope& sc) {
+    for (const auto& c : f.structure) {
+      if (auto p = find_element_passport(c.program)) {
+        add_element(c, *p, sc);
+      } else if (const ast::fragment* sub = find_fragment(c.program); sub && !c.program.empty()) {
+        add_instance(c, *sub, sc);
+      } else {
+        std::vector<std::string> cands = element_names();
+        for (const auto& g : prog_.fragments)
+          if (!g.name.empty()) cands.push_back(g.name);
+        std::string hint;
+        if (find_program(output_programs(), c.program))
+          hint = " ('" + c.program + "' is an output program: use it under #OUTPUT)";
+        else if (find_program(integration_programs(), c.program))
+          hint = " ('" + c.program + "' is an integration program: use it under $RUN)";
+        else
+          hint = did_you_mean(c.program, cands);
+        fail(c.program_loc, "unknown element model '" + c.program + "'" + hint + "; `pradis list` shows the catalog");
+      }
+    }
+  }
+
+  void add_element(const ast::call& c, const passport& p, scope& sc) {
+    const std::string model_name(p.name);
+    if (model_->element_count() >= max_elements)
+      fail(c.loc, "the model has more than " + std::to_string(max_elements) +
+                      " elements (do nested fragment instances multiply?)");
+    if (c.args.size() != 2)
+      fail(c.args_loc,
+           "an element needs (nodes; parameters): '" + model_name + "' " +
+               (c.args.size() < 2 ? "has no ';' between its nodes and its parameters" : "has more than one ';'"));
+    const std::vector<int> nodes = node_list(c.args[0]);
+    if (static_cast<int>(nodes.size()) != p.ext)
+      fail(c.args.front().empty() ? c.args_loc : c.args[0].front().loc,
+           "'" + model_name + "' needs " + std::to_string(p.ext) + " node" + (p.ext == 1 ? "" : "s") +
+               " (EXT = " + std::to_string(p.ext) + "), got " + std::to_string(nodes.size()));
+    std::vector<double> par = expand(c.args[1], "an element's parameter list");
+    const int npar = static_cast<int>(par.size());
+    if (!p.parameter_count_ok(npar))
+      fail(c.args[1].empty() ? c.args_loc : c.args[1].front().loc,
+           "'" + model_name + "' takes " + std::string(p.parameter_rule()) + " = " + std::to_string(p.par) +
+               " parameter" + (p.par == 1 ? "" : "s") + " (passport PAR = " + std::to_string(p.par) +
+               ", VPR = " + std::to_string(p.vpr) + "), got " + std::to_string(npar) + " after expanding $DATA lists");
+    std::vector<dof> ds;
+    for (int n : nodes) ds.push_back(dof{node_dof(sc, n)});
+    std::string name = c.label.empty() ? std::string() : sc.prefix + c.label;
+    if (!name.empty())
+      if (auto f = element_loc_.find(name); f != element_loc_.end())
+        fail(c.loc, "an element named '" + name + "' is already defined at " + f->second.str());
+    try {
+      auto loc = model_->add_by_name(model_name, name, ds, par);
+      if (name.empty()) name = instance_name(loc);
+    } catch (const pradis::error& e) {
+      fail(c.loc, e.message());
+    }
+    element_loc_[name] = c.loc;
+    elements_.push_back({name, c.loc, c.args[1], par});
+  }
+
+  std::string instance_name(const instance_location& loc) const {
+    std::string out;
+    std::size_t t = 0;
+    model_->for_each_instances([&](const auto& vec) {
+      if (t++ == loc.type) out = vec[static_cast<std::size_t>(loc.index)].name;
+    });
+    return out;
+  }
+
+  void add_instance(const ast::call& c, const ast::fragment& f, scope& sc) {
+    if (c.label.empty())
+      fail(c.loc, "an instance of fragment " + f.name + " needs a label (it prefixes the names inside)");
+    for (const auto& s : sc.stack)
+      if (s == f.name) fail(c.program_loc, "fragment " + f.name + " instantiates itself");
+    if (sc.stack.size() > 32) fail(c.program_loc, "fragments nested more than 32 levels deep");
+    if (!f.has_external) fail(f.loc, "fragment " + f.name + " is used as a sub-structure but has no #EXTERNAL nodes");
+    if (++instances_ > max_instances)
+      fail(c.loc, "more than " + std::to_string(max_instances) + " fragment instances (do nested instances multiply?)");
+    if (c.args.size() > 1) fail(c.args_loc, "a fragment instance takes only its external nodes: 'NAME (nodes)'");
+    const std::vector<int> nodes = c.args.empty() ? std::vector<int>{} : node_list(c.args[0]);
+    const std::vector<int> ext = node_list(f.external);
+    if (nodes.size() != ext.size())
+      fail(c.args_loc, "fragment " + f.name + " has " + std::to_string(ext.size()) +
+                           " external nodes (#EXTERNAL), got " + std::to_string(nodes.size()));
+    std::map<int, int> map;
+    for (std::size_t k = 0; k < ext.size(); ++k) {
+      if (ext[k] == 0) fail(f.external_loc, "the ground (node 0) cannot be an external node");
+      if (!map.emplace(ext[k], node_dof(sc, nodes[k])).second)
+        fail(f.external_loc, "node " + std::to_string(ext[k]) + " is listed twice in #EXTERNAL");
+    }
+    scope inner;
+    inner.prefix = sc.prefix + c.label + ".";
+    inner.external = &map;
+    inner.stack = sc.stack;
+    inner.stack.push_back(f.name);
+    instantiate(f, inner);
+    build_outputs_of(f, inner);
+  }
+
+  // ---- #OUTPUT --------------------------------------------------------------------------
+  void build_outputs() {
+    scope sc;
+    build_outputs_of(*main_, sc);
+    std::vector<std::string> names;
+    for (const auto& o : outputs_) names.push_back(o.label);
+    results_ = io::table(names);
+  }
+
+  void build_outputs_of(const ast::fragment& f, scope& sc) {
+    for (const auto& c : f.outputs) {
+      output_column o;
+      o.loc = c.loc;
+      const program_info* prog = find_program(output_programs(), c.program);
+      if (!prog) {
+        std::string hint = find_element_passport(c.program)
+                               ? " ('" + c.program + "' is an element model: use it under #STRUCTURE)"
+                               : did_you_mean(c.program, names_of(output_programs()));
+        fail(c.program_loc, "unknown output program '" + c.program + "'" + hint);
+      }
+      if (c.program == "X") {
+        if (c.args.empty() || c.args.size() > 2 || c.args[0].size() != 1)
+          fail(c.args_loc, "'X needs (node; order) or (W:Element(k); 1)");
+        if (c.args.size() == 2) {
+          if (c.args[1].size() != 1)
+            fail(c.args_loc, "'X takes one order after ';' (1 displacement, 2 velocity, 3 acceleration)");
+          o.order = whole(c.args[1][0], "the order of 'X (1 displacement, 2 velocity, 3 acceleration)", 1, 3);
+        }
+        const ast::item& target = c.args[0][0];
+        if (target.what == ast::item::kind::work) {
+          o.what = output_column::kind::work;
+          o.element = sc.prefix + target.text;
+          o.index = target.index;
+          if (o.order != 1) fail(c.args[1][0].loc, "a work-vector entry has only order 1 (its value)");
+          auto loc = model_->find(o.element);
+          if (!loc) {
+            std::vector<std::string> names;
+            for (const auto& [k, v] : element_loc_) names.push_back(k);
+            fail(target.loc, "no element named '" + o.element + "'" + did_you_mean(o.element, names));
+          }
+          const auto size = model_->work(o.element).size();
+          if (static_cast<std::size_t>(o.index) > size)
+            fail(target.index_loc, "element '" + o.element + "' (" + std::string(model_->type_name(*loc)) + ") has " +
+                                       std::to_string(size) + " work-vector entr" + (size == 1 ? "y" : "ies") +
+                                       "; W:" + target.text + "(" + std::to_string(o.index) + ") does not exist");
+        } else {
+          o.what = output_column::kind::potential;
+          const int node = node_list({target}).front();
+          if (node == 0) fail(target.loc, "node 0 is the ground: its potential is always zero");
+          if (sc.external) {
+            if (auto e = sc.external->find(node); e != sc.external->end())
+              o.dof = e->second;
+            else if (auto i = sc.internal.find(node); i != sc.internal.end())
+              o.dof = i->second;
+            else
+              fail(target.loc,
+                   "node " + std::to_string(node) + " is not connected to any element of fragment " + f.name);
+          } else {
+            auto it = node_dof_.find(node);
+            if (it == node_dof_.end())
+              fail(target.loc, "node " + std::to_string(node) + " is not connected to any element");
+            o.dof = it->second;
+          }
+          o.node = node;
+        }
+      } else {
+        if (!c.args.empty() && !(c.args.size() == 1 && c.args[0].empty()))
+          fail(c.args_loc, "'" + c.program + " takes no arguments: '" + c.program + " ()");
+        o.what = output_column::kind::statistic;
+        o.statistic = c.program;
+      }
+      o.label = c.label.empty() ? auto_label(c, o) : sc.prefix + c.label;
+      if (auto [it, fresh] = output_labels_.emplace(o.label, c.loc); !fresh)
+        fail(c.loc, "an output labelled '" + o.label + "' is already defined at " + it->second.str());
+      if (outputs_.size() >= max_outputs) fail(c.loc, "more than " + std::to_string(max_outputs) + " outputs");
+      outputs_.push_back(std::move(o));
+    }
+  }
+
+  static std::string auto_label(const ast::call& c, const output_column& o) {
+    switch (o.what) {
+      case output_column::kind::potential:
+        return "X(" + std::to_string(o.node) + ";" + std::to_string(o.order) + ")";
+      case output_column::kind::work:
+        return "X(W:" + o.element + "(" + std::to_string(o.index) + "))";
+      case output_column::kind::statistic:
+        return c.program;
+    }
+    return c.program;
+  }
+
+  // ---- actions: static checks ----------------------------------------------------------------
+  void check_actions() {
+    for (const auto& a : prog_.actions) {
+      if (a.what == ast::action::kind::run) (void)stage_options(a.stage);
+      if (a.what == ast::action::kind::print) (void)display_options(a.stage);
+      if (a.what == ast::action::kind::replace)
+        for (const auto& d : a.definitions) {
+          if (!data_.count(d.name))
+            fail(d.loc, "$REPLACE of an undefined $DATA name '" + d.name + "'" + did_you_mean(d.name, data_names()));
+          (void)expand(d.values, "$REPLACE");
+        }
+    }
+    bool any_run = false;
+    for (const auto& a : prog_.actions) any_run = any_run || a.what == ast::action::kind::run;
+    if (!any_run) fail(prog_.end, "missing section $RUN (at least one stage, e.g. `Calculation 'SHTERM (END=1)`)");
+  }
+
+  struct stage_spec {
+    run_options opt;
+    newmark_parameters scheme;
+  };
+
+  stage_spec stage_options(const ast::call& c) const {
+    const program_info* prog = find_program(integration_programs(), c.program);
+    if (!prog) {
+      std::string hint = find_element_passport(c.program)
+                             ? " ('" + c.program + "' is an element model: use it under #STRUCTURE)"
+                             : did_you_mean(c.program, names_of(integration_programs()));
+      fail(c.program_loc, "unknown integration program '" + c.program + "'" + hint);
+    }
+    stage_spec s;
+    s.scheme = c.program == "SHTERM" ? newmark_parameters{0.5, 1.0} : newmark_parameters{};
+    std::set<std::string> seen;
+    bool has_end = false;
+    static const std::vector<std::string> known{"END",   "OUT",   "SMAX", "SMIN",   "IGNORE", "DABSU", "DRLTU",
+                                                "DABSI", "DRLTI", "ITR",  "SECOND", "BETA",   "GAMMA",
+                                                "DABSX", "DRLTX", "CONTROL", "PREDICT"};
+    for (const auto& g : c.args)
+      for (const auto& it : g) {
+        if (it.what != ast::item::kind::keyed)
+          fail(it.loc, "an integration program takes KEY=value arguments (e.g. END=1)");
+        const std::string& k = it.text;
+        if (!seen.insert(k).second) fail(it.loc, "key " + k + " is given twice");
+        const ast::item& v = it.value.front();
+        bool is_unimpl = false;
+        for (const auto& u : unimplemented_run_keys()) is_unimpl = is_unimpl || u == k;
+        if (is_unimpl)
+          fail(it.loc, "key " + k + " of " + c.program +
+                           " is not implemented by pradis yet (implemented: END OUT SMAX SMIN IGNORE DABSU DRLTU DABSI "
+                           "DRLTI ITR SECOND DABSX DRLTX CONTROL PREDICT" +
+                           (c.program == "NEWMARK" ? " BETA GAMMA" : "") + ")");
+        if (k == "END") {
+          s.opt.end = scalar(v, "END");
+          has_end = true;
+        } else if (k == "OUT")
+          s.opt.out = scalar(v, "OUT");
+        else if (k == "SMAX")
+          s.opt.smax = scalar(v, "SMAX");
+        else if (k == "SMIN")
+          s.opt.smin = scalar(v, "SMIN");
+        else if (k == "IGNORE")
+          s.opt.ignore = whole(v, "IGNORE", 0, 1) == 1;
+        else if (k == "SECOND")
+          s.opt.newton.second = whole(v, "SECOND", 0, 1) == 1;
+        else if (k == "DABSU")
+          s.opt.newton.dabsu = scalar(v, "DABSU");
+        else if (k == "DRLTU")
+          s.opt.newton.drltu = scalar(v, "DRLTU");
+        else if (k == "DABSI")
+          s.opt.newton.dabsi = scalar(v, "DABSI");
+        else if (k == "DRLTI")
+          s.opt.newton.drlti = scalar(v, "DRLTI");
+        else if (k == "ITR")
+          s.opt.newton.itr = whole(v, "ITR", 1, 1000);
+        else if (k == "DABSX") {
+          s.opt.dabsx = scalar(v, "DABSX");
+          s.opt.error_control = true;
+        } else if (k == "DRLTX") {
+          s.opt.drltx = scalar(v, "DRLTX");
+          s.opt.error_control = true;
+        } else if (k == "CONTROL") {
+          s.opt.control = scalar(v, "CONTROL");
+          s.opt.error_control = true;
+        } else if (k == "PREDICT") {
+          s.opt.predict = whole(v, "PREDICT", 0, 1) == 1;
+          s.opt.error_control = true;
+        }
+        else if ((k == "BETA" || k == "GAMMA") && c.program == "SHTERM")
+          fail(it.loc, "key " + k + " belongs to NEWMARK; SHTERM has fixed BETA = 1/2, GAMMA = 1");
+        else if (k == "BETA")
+          s.scheme.beta = scalar(v, "BETA");
+        else if (k == "GAMMA")
+          s.scheme.gamma = scalar(v, "GAMMA");
+        else
+          fail(it.loc, "unknown key " + k + " of " + c.program + did_you_mean(k, known));
+      }
+    if (!has_end) fail(c.args_loc, c.program + " needs END=<end time>");
+    try {
+      (void)newmark(s.scheme);
+    } catch (const pradis::error& e) {
+      fail(c.args_loc, e.message());
+    }
+    return s;
+  }
+
+  struct display_spec {
+    std::vector<int> columns;
+    double start = -HUGE_VAL, end = HUGE_VAL;
+  };
+
+  display_spec display_options(const ast::call& c) const {
+    if (!find_program(display_programs(), c.program))
+      fail(c.program_loc,
+           "unknown display program '" + c.program + "'" + did_you_mean(c.program, names_of(display_programs())));
+    display_spec d;
+    for (const auto& g : c.args)
+      for (const auto& it : g) {
+        if (it.what == ast::item::kind::keyed) {
+          if (it.text == "START")
+            d.start = scalar(it.value.front(), "START");
+          else if (it.text == "END")
+            d.end = scalar(it.value.front(), "END");
+          else if (it.text == "OUT" || it.text == "FORMF")
+            fail(it.loc,
+                 "key " + it.text + " of " + c.program + " is not implemented by pradis yet (implemented: START END)");
+          else
+            fail(it.loc, "unknown key " + it.text + " of " + c.program + did_you_mean(it.text, {"START", "END"}));
+        } else if (it.what == ast::item::kind::name) {
+          int found = -1;
+          std::vector<std::string> labels;
+          for (std::size_t k = 0; k < outputs_.size(); ++k) {
+            labels.push_back(outputs_[k].label);
+            if (outputs_[k].label == it.text) found = static_cast<int>(k);
+          }
+          if (found < 0) fail(it.loc, "no output labelled '" + it.text + "'" + did_you_mean(it.text, labels));
+          d.columns.push_back(found);
+        } else {
+          fail(it.loc, "a display program takes output labels and START=, END=");
+        }
+      }
+    if (d.columns.empty())
+      for (std::size_t k = 0; k < outputs_.size(); ++k) d.columns.push_back(static_cast<int>(k));
+    if (d.columns.empty()) fail(c.loc, "nothing to display: the model has no #OUTPUT");
+    return d;
+  }
+
+  // ---- actions: execution -------------------------------------------------------------------
+  void record(const sim_type& s) {
+    std::vector<double> row;
+    row.reserve(outputs_.size());
+    for (const auto& o : outputs_) {
+      switch (o.what) {
+        case output_column::kind::potential: {
+          const dof d{o.dof};
+          row.push_back(o.order == 1 ? s.u(d) : (o.order == 2 ? s.v(d) : s.a(d)));
+          break;
+        }
+        case output_column::kind::work:
+          row.push_back(s.get_model().work(o.element)[static_cast<std::size_t>(o.index - 1)]);
+          break;
+        case output_column::kind::statistic:
+          row.push_back(s.statistic(o.statistic));
+          break;
+      }
+    }
+    results_.add_row(s.time(), row);
+  }
+
+  std::unique_ptr<sim_type> make_sim(const newmark_parameters& p) {
+    auto s = std::make_unique<sim_type>(*model_, newmark(p));
+    s->on_output([this](const sim_type& x) { record(x); });
+    return s;
+  }
+
+  /// A simulation with the scheme p, continuing the current one (via an in-memory checkpoint) if any.
+  void use_scheme(const newmark_parameters& p) {
+    if (sim_ && scheme_.beta == p.beta && scheme_.gamma == p.gamma) return;
+    auto next = make_sim(p);
+    if (sim_ && started_) {
+      std::stringstream ss;
+      sim_->save_checkpoint(ss);
+      next->load_checkpoint(ss);
+    }
+    sim_ = std::move(next);
+    scheme_ = p;
+  }
+
+  [[noreturn]] void rethrow(const pradis::error& e, const ast::call& c) const {
+    std::string what = std::string(e.element_type());
+    if (!e.instance().empty()) what += (what.empty() ? "'" : " '") + e.instance() + "'";
+    std::string msg = e.message();
+    if (e.code() == error_code::invalid_option && msg.rfind("NEWMARK: ", 0) == 0)
+      msg = c.program + ": " + msg.substr(9);
+    msg = (what.empty() ? "" : what + ": ") + msg + " (pradis error " + std::to_string(e.number()) + ", " +
+          std::string(to_string(e.code())) + ")";
+    if (!e.instance().empty())
+      if (auto f = element_loc_.find(e.instance()); f != element_loc_.end())
+        fail(f->second, msg + "; during the stage at " + c.loc.str());
+    fail(c.loc, msg);
+  }
+
+  void run_stage(const ast::call& c) {
+    const stage_spec st = stage_options(c);  // again: $REPLACE may have changed $DATA values
+    use_scheme(st.scheme);
+    if (started_ && !(st.opt.end > sim_->time()))
+      fail(c.args_loc, "END = " + num(st.opt.end) + " must be after the current time " + num(sim_->time()));
+    stage_report r{c.label, c.program, started_ ? sim_->time() : 0.0, st.opt.end, {}};
+    try {
+      r.stats = sim_->run(st.opt);
+    } catch (const pradis::error& e) {
+      rethrow(e, c);
+    }
+    started_ = true;
+    note("stage " + std::to_string(reports_.size() + 1) + (c.label.empty() ? "" : " '" + c.label + "'") + " " +
+         c.program + ": t = " + num(r.t0) + " .. " + num(r.t1) + ", " + std::to_string(r.stats.steps) + " steps, " +
+         std::to_string(r.stats.rejected_steps) + " rejected, " + std::to_string(r.stats.newton_iterations) +
+         " Newton iterations");
+    reports_.push_back(r);
+  }
+
+  std::string path_in_output(const std::string& name) const {
+    std::filesystem::path p(name);
+    if (p.is_relative()) p = std::filesystem::path(settings_.output_dir) / p;
+    return p.string();
+  }
+
+  static std::string file_part(const std::string& label) {
+    std::string s;
+    for (char ch : label) s += (std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_') ? ch : '_';
+    return s;
+  }
+
+  void display(const ast::call& c) {
+    const auto d = display_options(c);
+    std::vector<std::string> names;
+    for (int k : d.columns) names.push_back(outputs_[static_cast<std::size_t>(k)].label);
+    io::table t(names);
+    for (std::size_t r = 0; r < results_.rows(); ++r) {
+      const double time = results_.at(r, 0);
+      if (time < d.start || time > d.end) continue;
+      std::vector<double> row;
+      for (int k : d.columns) row.push_back(results_.at(r, static_cast<std::size_t>(k) + 1));
+      t.add_row(time, row);
+    }
+    ++displays_;
+    if (!settings_.write_files) return;
+    const std::string base = path_in_output(
+        settings_.stem + "." + (c.label.empty() ? upper(c.program) + std::to_string(displays_) : file_part(c.label)));
+    try {
+      t.write_csv(base + ".csv");
+      files_.push_back(base + ".csv");
+      note(c.program + ": " + base + ".csv");
+      if (c.program == "DISP" && settings_.plot) {
+        t.plot_png(base + ".csv", base + ".png", c.label.empty() ? settings_.stem : c.label);
+        files_.push_back(base + ".png");
+        note(c.program + ": " + base + ".png");
+      }
+    } catch (const pradis::error& e) {
+      fail(c.loc, e.message());
+    }
+  }
+
+  void replace(const ast::action& a) {
+    for (const auto& d : a.definitions) data_[d.name].values = expand(d.values, "$REPLACE");
+    for (auto& r : elements_) {
+      std::vector<double> v = expand(r.params, "an element's parameter list");
+      if (v == r.values) continue;
+      if (v.size() != r.values.size())
+        fail(a.loc, "$REPLACE changes the number of parameters of '" + r.name + "' from " +
+                        std::to_string(r.values.size()) + " to " + std::to_string(v.size()) +
+                        " (the count is fixed when the model is built; element at " + r.loc.str() + ")");
+      for (double x : v)
+        if (!std::isfinite(x)) fail(a.loc, "$REPLACE gives '" + r.name + "' a non-finite parameter");
+      const auto loc = *model_->find(r.name);
+      std::size_t t = 0;
+      library_model::for_each_type([&]<class E>(std::type_identity<E>) {
+        if (t++ == loc.type)
+          model_->instances<E>()[static_cast<std::size_t>(loc.index)].element = E::from_parameters(v);
+      });
+      r.values = std::move(v);
+    }
+  }
+
+  void save(const ast::action& a) {
+    if (!started_) fail(a.loc, "$SAVE before any stage has run: nothing to save");
+    const std::string p = path_in_output(a.path);
+    std::ofstream f(p, std::ios::binary);
+    if (!f) fail(a.loc, "cannot write the checkpoint '" + p + "'");
+    try {
+      sim_->save_checkpoint(f);
+    } catch (const pradis::error& e) {
+      fail(a.loc, e.message());
+    }
+    note("checkpoint: " + p + " (t = " + num(sim_->time()) + ")");
+    files_.push_back(p);
+  }
+
+  void restore(const ast::action& a) {
+    const std::string p = path_in_output(a.path);
+    std::ifstream f(p, std::ios::binary);
+    if (!f) fail(a.loc, "cannot read the checkpoint '" + p + "'");
+    use_scheme(sim_ ? scheme_ : newmark_parameters{0.5, 1.0});
+    try {
+      sim_->load_checkpoint(f);
+    } catch (const pradis::error& e) {
+      fail(a.loc, "checkpoint '" + p + "': " + e.message());
+    }
+    started_ = true;
+    note("restored: " + p + " (t = " + num(sim_->time()) + ")");
+  }
+
+  ast::program prog_;
+  std::unique_ptr<library_model> model_;
+  const ast::fragment* main_ = nullptr;
+  std::map<std::string, data_entry> data_;
+  std::map<int, int> node_dof_;
+  std::map<std::string, location> element_loc_;
+  std::vector<element_record> elements_;
+  std::vector<output_column> outputs_;
+  std::map<std::string, location> output_labels_;
+  std::size_t instances_ = 0;
+  io::table results_{std::vector<std::string>{}};
+  std::unique_ptr<sim_type> sim_;
+  newmark_parameters scheme_{};
+  bool started_ = false;
+  int displays_ = 0;
+  run_settings settings_;
+  std::vector<std::string> files_;
+  std::vector<stage_report> reports_;
+};
+
+}  // namespace pradis::lang

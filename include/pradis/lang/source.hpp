@@ -1,0 +1,146 @@
+#pragma once
+/// \file
+/// Source files, locations and the one error type of the model language:
+/// `file:line:column: error: message`, with the offending line and a caret.
+/// Also the "did you mean" helper (edit distance) used for unknown names.
+
+#include <algorithm>
+#include <cstddef>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pradis::lang {
+
+/// One source text (a model file, an included file or a string under test).
+struct source_file {
+  std::string name;  ///< file name as shown in messages
+  std::string text;  ///< the whole text
+
+  /// Line n (1-based) without its end-of-line characters; empty if out of range.
+  std::string_view line(int n) const {
+    if (n < 1) return {};
+    std::size_t pos = 0;
+    for (int k = 1; k < n; ++k) {
+      pos = text.find('\n', pos);
+      if (pos == std::string::npos) return {};
+      ++pos;
+    }
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    std::string_view s(text.data() + pos, end - pos);
+    if (!s.empty() && s.back() == '\r') s.remove_suffix(1);
+    return s;
+  }
+};
+
+/// A position in a source: file, 1-based line and column (columns count bytes).
+struct location {
+  std::shared_ptr<const source_file> file;
+  int line = 0;
+  int col = 0;
+
+  /// `file:line:column` (or just the file name when the line is unknown).
+  std::string str() const {
+    std::string s = file ? file->name : std::string("<input>");
+    if (line > 0) s += ":" + std::to_string(line) + ":" + std::to_string(col);
+    return s;
+  }
+};
+
+/// An error in a model file or during its run, located in the source.
+/// what() is `file:line:column: error: message`; excerpt() adds the line and a caret.
+class lang_error : public std::runtime_error {
+ public:
+  lang_error(location loc, std::string message)
+      : std::runtime_error(loc.str() + ": error: " + message), loc_(std::move(loc)), message_(std::move(message)) {}
+
+  /// Where the error is.
+  const location& where() const noexcept { return loc_; }
+  /// The message without the location prefix.
+  const std::string& message() const noexcept { return message_; }
+
+  /// The offending source line and a caret under the column (two lines, each
+  /// ending in '\n'); control bytes are shown as '?'; empty if the line is unknown.
+  std::string excerpt() const {
+    if (!loc_.file || loc_.line < 1) return {};
+    std::string_view l = loc_.file->line(loc_.line);
+    constexpr std::size_t max_width = 160;
+    std::size_t from = 0;
+    const auto col = static_cast<std::size_t>(std::max(loc_.col, 1));
+    if (col > max_width) from = col - max_width / 2;
+    l = l.substr(std::min(from, l.size()), max_width);
+    // A line with control bytes is binary data: show only printable ASCII.
+    bool binary = false;
+    for (char c : l) binary = binary || (static_cast<unsigned char>(c) < 0x20 && c != '\t');
+    std::string text;
+    for (char c : l) {
+      const auto u = static_cast<unsigned char>(c);
+      text += (u < 0x20 && c != '\t') || u == 0x7f || (binary && u >= 0x80) ? '?' : (c == '\t' ? ' ' : c);
+    }
+    const std::string num = std::to_string(loc_.line);
+    std::string out = " " + num + " | " + text + "\n";
+    out += " " + std::string(num.size(), ' ') + " | " + std::string(col - 1 - from, ' ') + "^\n";
+    return out;
+  }
+
+ private:
+  location loc_;
+  std::string message_;
+};
+
+/// Edit distance (Levenshtein with adjacent transpositions, "optimal string
+/// alignment"), case-insensitive for ASCII letters.
+inline std::size_t edit_distance(std::string_view a, std::string_view b) {
+  auto low = [](char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; };
+  const std::size_t w = b.size() + 1;
+  std::vector<std::size_t> d((a.size() + 1) * w);
+  for (std::size_t j = 0; j <= b.size(); ++j) d[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    d[i * w] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const bool same = low(a[i - 1]) == low(b[j - 1]);
+      std::size_t v = std::min({d[(i - 1) * w + j] + 1, d[i * w + j - 1] + 1, d[(i - 1) * w + j - 1] + (same ? 0 : 1)});
+      if (i > 1 && j > 1 && low(a[i - 1]) == low(b[j - 2]) && low(a[i - 2]) == low(b[j - 1]))
+        v = std::min(v, d[(i - 2) * w + j - 2] + 1);
+      d[i * w + j] = v;
+    }
+  }
+  return d[a.size() * w + b.size()];
+}
+
+/// The nearest candidate to `word` if it is close enough to be a likely typo
+/// (distance at most max(1, length / 3)), else empty.
+inline std::string nearest(std::string_view word, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t bd = std::string::npos;
+  if (word.size() > 200) return best;  // no typo of a catalog name is that long
+  for (const auto& c : candidates) {
+    if (c.size() > 200) continue;
+    const std::size_t d = edit_distance(word, c);
+    if (d < bd) {
+      bd = d;
+      best = c;
+    }
+  }
+  const std::size_t limit = std::max<std::size_t>(1, std::max(word.size(), best.size()) / 3);
+  return bd <= limit ? best : std::string{};
+}
+
+/// " (did you mean 'X'?)" or "" — for appending to an error message.
+inline std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates) {
+  const std::string n = nearest(word, candidates);
+  return n.empty() ? std::string{} : " (did you mean '" + n + "'?)";
+}
+
+/// ASCII upper case.
+inline std::string upper(std::string_view s) {
+  std::string o(s);
+  for (char& c : o)
+    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+  return o;
+}
+
+}  // namespace pradis::lang
