@@ -16,7 +16,8 @@
 // At the end one CSV table is written:
 //   matrix,n,nnz_a,solver,ordering,nnz_factor,order_s,factor_s,refactor_s,solve_s
 // Flags (besides google-benchmark's): --csv=PATH (default docs/data/sparse_orderings.csv),
-// --small (smallest size of each family only: the CTest smoke run).
+// --small (smallest size of each family only: the CTest smoke run),
+// --thresholds=PATH (only the OPTIM threshold sweep on small matrices, see run_thresholds()).
 // Weak orderings are skipped where they are hopeless (natural on large 2D/3D grids,
 // row_count/initial_fill above 5000 DOFs); min_fill is skipped on the 32^3 grid (its exact
 // deficiency updates cost O(fill * degree), about half a minute already on 24^3).
@@ -388,16 +389,104 @@ void write_csv(const std::string& path) {
   std::printf("wrote %zu rows to %s\n", g_rows.size(), path.c_str());
 }
 
+
+/// Block chain: nb bodies of 2 DOFs in a row, each coupled to its neighbours (the Jacobian
+/// pattern of a chain of planar bodies joined by links).
+test_matrix chain2(int nb) {
+  std::vector<std::pair<int, int>> ij;
+  std::vector<double> v;
+  const int n = 2 * nb;
+  for (int b = 0; b < nb; ++b)
+    for (int p = 0; p < 2; ++p)
+      for (int q = 0; q < 2; ++q) {
+        ij.emplace_back(2 * b + p, 2 * b + q);
+        v.push_back(p == q ? 8.0 : 0.5);
+        if (b + 1 < nb) {
+          ij.emplace_back(2 * b + p, 2 * (b + 1) + q);
+          v.push_back(-1.1 + 0.1 * q);
+          ij.emplace_back(2 * (b + 1) + p, 2 * b + q);
+          v.push_back(-0.9 - 0.1 * q);
+        }
+      }
+  return from_triplets("chain_" + std::to_string(nb), family::truss, n, ij, v);
+}
+
+/// One row of the OPTIM threshold sweep: cost of one ordering on one small matrix.
+struct threshold_row {
+  std::string matrix;
+  int n = 0;
+  int level = 0;
+  long nnz_factor = 0;
+  double analyze_s = 0, refactor_s = 0, solve_s = 0;
+};
+
+/// Median of `runs` mean times of f() (each mean over >= 3 calls and >= 5 ms).
+template <class F>
+double median_time(F&& f, int runs = 5) {
+  std::vector<double> t;
+  for (int r = 0; r < runs; ++r) t.push_back(mean_time(f, 0.005));
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+/// Measures analyze (ordering + symbolic phase), refactorisation and solve for every OPTIM
+/// level on small model-like matrices (2D grids, truss girders 2 nodes high, 2-DOF body
+/// chains) with 2..~1000 DOFs, and writes them to a CSV. The cost of a level for a run with R
+/// refactorisations per topology is analyze_s + R * (refactor_s + solve_s); see
+/// docs/sparse.md for the crossovers that set automatic_level().
+void run_thresholds(const std::string& path) {
+  std::vector<test_matrix> mats;
+  for (int k = 2; k <= 32; ++k) mats.push_back(grid(k, 2));
+  for (const int nx : {1, 2, 3, 4, 5, 6, 8, 10, 12, 15, 20, 25, 30, 40, 50, 60, 80, 100, 125, 160, 200, 250})
+    mats.push_back(truss(2, nx));
+  for (const int nb : {1, 2, 3, 4, 5, 6, 8, 10, 15, 20, 25, 30, 40, 50, 75, 100, 150, 200, 300, 400, 500})
+    mats.push_back(chain2(nb));
+  std::ofstream os(path);
+  if (!os) {
+    std::fprintf(stderr, "cannot write %s\n", path.c_str());
+    return;
+  }
+  os << "matrix,n,nnz_a,level,ordering,nnz_factor,analyze_s,refactor_s,solve_s\n";
+  for (const auto& m : mats) {
+    for (int level = optim_min_level; level <= optim_max_level; ++level) {
+      sparse_lu<optim_ordering> lu(ordering_for_level(level));
+      threshold_row r{m.name, m.pattern.n, level, 0, 0, 0, 0};
+      r.analyze_s = median_time([&] { lu.analyze(m.pattern); });
+      lu.factorize(m.values);
+      r.nnz_factor = lu.statistics().nnz_factor;
+      r.refactor_s = median_time([&] { lu.factorize(m.values); });
+      std::vector<double> b(static_cast<std::size_t>(m.pattern.n), 1.0);
+      r.solve_s = median_time([&] {
+        std::fill(b.begin(), b.end(), 1.0);
+        lu.solve(b);
+      });
+      char buf[256];
+      std::snprintf(buf, sizeof buf, "%s,%d,%ld,%d,%s,%ld,%.4g,%.4g,%.4g\n", r.matrix.c_str(), r.n,
+                    static_cast<long>(m.pattern.nnz()), level, std::string(ordering_name_for_level(level)).c_str(),
+                    r.nnz_factor, r.analyze_s, r.refactor_s, r.solve_s);
+      os << buf;
+      std::fputs(buf, stdout);
+    }
+  }
+  std::printf("wrote %s\n", path.c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string csv = "docs/data/sparse_orderings.csv";
   bool small = false;
+  std::string thresholds;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
     if (std::strncmp(argv[i], "--csv=", 6) == 0) csv = argv[i] + 6;
     else if (std::strcmp(argv[i], "--small") == 0) small = true;
+    else if (std::strncmp(argv[i], "--thresholds=", 13) == 0) thresholds = argv[i] + 13;
     else args.push_back(argv[i]);
+  }
+  if (!thresholds.empty()) {  // OPTIM threshold sweep only (no google-benchmark run)
+    run_thresholds(thresholds);
+    return 0;
   }
   int bargc = static_cast<int>(args.size());
   benchmark::Initialize(&bargc, args.data());
