@@ -1,13 +1,17 @@
 // pradis: the command-line runner of the pradis kernel, with every element of
 // the built-in library compiled in.
 //
-//   pradis run [FILE] [-o DIR] [--no-plot] [-q]   run a model file (no FILE: the built-in example)
+//   pradis run [FILE] [-o DIR] [--no-plot] [-q] [--progress|--no-progress]
+//                                                 run a model file (no FILE: the built-in example)
 //   pradis list                                   catalog of elements and programs
 //   pradis help NAME                              reference of an element or program
 //   pradis check NAME [--points N] [--seed S]     finite-difference Jacobian check of an element
 //
 // Exit status: 0 success, 1 error in the model or the run (or a wrong Jacobian), 2 bad command line.
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -22,7 +26,8 @@ constexpr const char* main_usage =
     "usage: pradis <command> [options]\n"
     "\n"
     "commands:\n"
-    "  run [FILE] [-o DIR] [--no-plot] [-q]   run a model file (without FILE: the built-in two-body example)\n"
+    "  run [FILE] [-o DIR] [--no-plot] [-q] [--progress|--no-progress]\n"
+    "                                         run a model file (without FILE: the built-in two-body example)\n"
     "  list                                   catalog of element models, integration, output and display programs\n"
     "  help NAME                              full reference of an element model or a program\n"
     "  check NAME [--points N] [--seed S]     finite-difference Jacobian check of an element\n"
@@ -30,7 +35,7 @@ constexpr const char* main_usage =
     "`pradis <command> --help` describes one command. The model language: docs/language.md.\n";
 
 constexpr const char* run_usage =
-    "usage: pradis run [FILE] [-o DIR] [--no-plot] [-q]\n"
+    "usage: pradis run [FILE] [-o DIR] [--no-plot] [-q] [--progress|--no-progress]\n"
     "\n"
     "Runs the model file FILE: builds the model, runs the stages of $RUN, executes\n"
     "$PRINT, $REPLACE, $SAVE and $RESTORE in file order, and writes every output of\n"
@@ -40,9 +45,16 @@ constexpr const char* run_usage =
     "(examples/models/two_bodies.prd).\n"
     "\n"
     "options:\n"
-    "  -o DIR      output directory (default: the current directory); created if needed\n"
-    "  --no-plot   do not call gnuplot: 'DISP writes its CSV only\n"
-    "  -q          quiet: print errors only\n"
+    "  -o DIR         output directory (default: the current directory); created if needed\n"
+    "  --no-plot      do not call gnuplot: 'DISP writes its CSV only\n"
+    "  -q             quiet: print errors only (and no progress line unless --progress)\n"
+    "  --progress     show the progress line on stderr even if stderr is not a terminal\n"
+    "  --no-progress  never show the progress line\n"
+    "\n"
+    "While a stage runs, a one-line progress display on stderr (only when stderr\n"
+    "is a terminal) shows the simulated time, the percentage of the stage, the step\n"
+    "size, the Newton iterations and the elapsed and estimated remaining time; it\n"
+    "is redrawn in place at most ten times a second and cleared when the stage ends.\n"
     "\n"
     "Errors in the file are reported as `file:line:column: error: message` with the\n"
     "offending line; the exit status is then 1.\n";
@@ -83,6 +95,7 @@ bool parse_int(const std::string& s, long lo, long hi, long& out) {
 int cmd_run(const std::vector<std::string>& args) {
   std::string file, dir = ".";
   bool plot = true, quiet = false;
+  int progress = -1;  // -1: if stderr is a terminal; 0: off; 1: on
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (is_help(a)) {
@@ -96,6 +109,8 @@ int cmd_run(const std::vector<std::string>& args) {
       plot = false;
     } else if (a == "-q") {
       quiet = true;
+    } else if (a == "--progress" || a == "--no-progress") {
+      progress = a == "--progress" ? 1 : 0;  // the last of them counts
     } else if (!a.empty() && a[0] == '-') {
       return usage_error("unknown option '" + a + "' of run", run_usage);
     } else if (file.empty()) {
@@ -120,7 +135,13 @@ int cmd_run(const std::vector<std::string>& args) {
       if (stem.empty()) stem = "model";
     }
     pradis::lang::session s(std::move(prog));
-    s.run({.output_dir = dir, .stem = stem, .plot = plot, .write_files = true, .log = quiet ? nullptr : &std::cout});
+    const bool show_progress = progress == 1 || (progress == -1 && !quiet && isatty(fileno(stderr)) == 1);
+    s.run({.output_dir = dir,
+           .stem = stem,
+           .plot = plot,
+           .write_files = true,
+           .log = quiet ? nullptr : &std::cout,
+           .progress = show_progress ? &std::cerr : nullptr});
     return 0;
   } catch (const pradis::lang::lang_error& e) {
     std::cerr << e.what() << '\n' << e.excerpt();

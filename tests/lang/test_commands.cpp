@@ -56,6 +56,11 @@ TEST_SUITE("lang/commands") {
     const std::string s = os.str();
     for (const auto& n : lang::help_names()) CHECK(s.find("  " + n + " ") != std::string::npos);
     CHECK(s.find("LINKD    ideal elastic axial link for plane motion (EXT=4, PAR=5)") != std::string::npos);
+    // The four integration programs, one line each with their purpose.
+    CHECK(s.find("  SHTERM   Stoermer scheme") != std::string::npos);
+    CHECK(s.find("  NEWMARK  Newmark scheme") != std::string::npos);
+    CHECK(s.find("  HHT      Hilber-Hughes-Taylor alpha scheme: second order") != std::string::npos);
+    CHECK(s.find("  GALPHA   generalized-alpha scheme: second order") != std::string::npos);
   }
 
   TEST_CASE("`pradis help NAME` prints the passport and every help line of every element") {
@@ -66,8 +71,14 @@ TEST_SUITE("lang/commands") {
     std::ostringstream os, err;
     CHECK(lang::print_reference(os, err, "newmark"));
     CHECK(os.str().find("BETA") != std::string::npos);
-    CHECK(os.str().find("Not implemented yet (an error if given): WEIGHT SAVE") != std::string::npos);
+    CHECK(os.str().find("Not implemented yet (an error if given): WEIGHT OPTIM") != std::string::npos);
     CHECK(os.str().find("DRLTX - error control") != std::string::npos);
+    CHECK(os.str().find("SAVE - write a checkpoint <stem>.t<time>.chk") != std::string::npos);
+    std::ostringstream hht, galpha;
+    CHECK(lang::print_reference(hht, err, "hht"));
+    CHECK(hht.str().find("ALPHA - -1/3 <= ALPHA <= 0") != std::string::npos);
+    CHECK(lang::print_reference(galpha, err, "GAlpha"));
+    CHECK(galpha.str().find("RHOINF - spectral radius at infinite frequency, 0 <= RHOINF <= 1") != std::string::npos);
     CHECK_FALSE(lang::print_reference(os, err, "LINKX"));
     CHECK(err.str().find("no element or program named 'LINKX' (did you mean 'LINKD'?)") != std::string::npos);
   }

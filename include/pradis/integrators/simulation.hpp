@@ -214,6 +214,10 @@ class simulation<model<Es...>, Scheme, Solver> {
   const Solver& solver() const noexcept { return solver_; }
   /// The scheme.
   const Scheme& scheme() const noexcept { return scheme_; }
+  /// Starts the scheme afresh from the current state, as at the zero step: the
+  /// pseudo-acceleration of the alpha family is set to the acceleration (p = a).
+  /// For a run continued with another scheme (see load_checkpoint()).
+  void restart_scheme() { s_.p = s_.a; }
 
 
   // ---- checkpoint and restart --------------------------------------------------

@@ -28,6 +28,12 @@ inline const std::vector<program_info>& integration_programs() {
       {"NEWMARK", "Newmark scheme, velocity as the Newton unknown (default average acceleration, second order)",
        "Calculation 'NEWMARK (END=1, BETA=0.25, GAMMA=0.5)",
        "BETA - displacement weight, 0 < BETA <= 1/2 (0.25)\nGAMMA - velocity weight, 1/2 <= GAMMA <= 1 (0.5)\n"},
+      {"HHT", "Hilber-Hughes-Taylor alpha scheme: second order, damps high frequencies (more for ALPHA nearer -1/3)",
+       "Calculation 'HHT (END=1, ALPHA=-0.1)",
+       "ALPHA - -1/3 <= ALPHA <= 0; spectral radius at infinite frequency (1 + ALPHA) / (1 - ALPHA) (-0.05)\n"},
+      {"GALPHA", "generalized-alpha scheme: second order, high-frequency damping set by RHOINF",
+       "Calculation 'GALPHA (END=1, RHOINF=0.8)",
+       "RHOINF - spectral radius at infinite frequency, 0 <= RHOINF <= 1; 1 is undamped (0.8)\n"},
   };
   return v;
 }
@@ -49,12 +55,13 @@ inline std::string_view common_run_keys() {
          "giving DABSX, DRLTX, CONTROL or PREDICT turns error control on\n"
          "DRLTX - error control: relative tolerance of the local error (0.001)\n"
          "CONTROL - error control: no error-driven step reduction below this step (0)\n"
-         "PREDICT - error control: 1 = linear prediction of the acceleration in the estimate (0)\n";
+         "PREDICT - error control: 1 = linear prediction of the acceleration in the estimate (0)\n"
+         "SAVE - write a checkpoint <stem>.t<time>.chk at every multiple of SAVE in the stage (none)\n";
 }
 
 /// Keys of PRADIS integration programs that pradis does not implement yet.
 inline const std::vector<std::string>& unimplemented_run_keys() {
-  static const std::vector<std::string> v{"WEIGHT", "SAVE", "OPTIM", "CHECKM", "DEBUG", "FLAG", "SCHEME"};
+  static const std::vector<std::string> v{"WEIGHT", "OPTIM", "CHECKM", "DEBUG", "FLAG", "SCHEME"};
   return v;
 }
 

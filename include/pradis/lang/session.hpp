@@ -7,6 +7,9 @@
 /// run with `file:line:column` messages, then executes the actions.
 
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -20,6 +23,7 @@
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "pradis/io/progress.hpp"
 #include "pradis/io/table.hpp"
 #include "pradis/lang/ast.hpp"
 #include "pradis/lang/catalog.hpp"
@@ -32,8 +36,27 @@ struct run_settings {
   std::string output_dir = ".";  ///< directory for CSV, PNG and checkpoints ($SAVE/$RESTORE paths are relative to it)
   std::string stem = "model";    ///< prefix of the output files
   bool plot = true;              ///< false: 'DISP writes its CSV but no PNG (no gnuplot needed)
-  bool write_files = true;       ///< false: no CSV/PNG at all (tests)
-  std::ostream* log = nullptr;   ///< progress lines (stages, files written), or none
+  bool write_files = true;       ///< false: no CSV/PNG and no SAVE-interval checkpoints (tests)
+  std::ostream* log = nullptr;   ///< report lines (stages, files written), or none
+  /// A one-line progress display redrawn in place while a stage runs (for a
+  /// terminal: `pradis run` passes stderr when it is one), or none.
+  std::ostream* progress = nullptr;
+};
+
+/// The integration scheme of a language stage: any member of the alpha family
+/// (SHTERM, NEWMARK, HHT, GALPHA), given by its four parameters, which the
+/// library's scheme classes have validated. The arithmetic is alpha_scheme's,
+/// so a stage computes exactly what the library's scheme of the same name does.
+class stage_scheme : public alpha_scheme {
+ public:
+  /// Prefix of the simulation's option messages (the session replaces it by the program name).
+  static constexpr std::string_view name = "STAGE";
+  /// PRADIS's Stoermer scheme (SHTERM).
+  stage_scheme() : stage_scheme(stoermer{}) {}
+  /// The scheme with the parameters of `s` (newmark, stoermer, hht, generalized_alpha).
+  explicit stage_scheme(const alpha_scheme& s) : stage_scheme(s.coefficients_set()) {}
+  /// The scheme with parameters taken from one of the library's schemes (not checked again).
+  explicit stage_scheme(const alpha_parameters& q) { p_ = q; }
 };
 
 /// One output variable (#OUTPUT line).
@@ -58,11 +81,13 @@ struct stage_report {
 /// A model file turned into a model and a list of actions.
 class session {
  public:
-  using sim_type = simulation<library_model, newmark>;
+  using sim_type = simulation<library_model, stage_scheme>;
   /// Largest number of element instances a model file may create.
   static constexpr std::size_t max_elements = 200000;
   /// Largest number of fragment instances, of outputs and of values in one list.
   static constexpr std::size_t max_instances = 200000, max_outputs = 10000, max_list = 100000;
+  /// Largest number of checkpoints the SAVE key of one stage may write.
+  static constexpr double max_checkpoints = 10000;
 
   /// Builds the model and checks outputs and actions. Throws lang_error.
   explicit session(ast::program prog) : prog_(std::move(prog)), model_(std::make_unique<library_model>()) {
@@ -79,6 +104,7 @@ class session {
   /// element's line, run failures at the stage's line).
   void run(const run_settings& s = {}) {
     settings_ = s;
+    progress_ = settings_.progress ? std::make_unique<io::progress_line>(*settings_.progress) : nullptr;
     if (settings_.write_files) std::filesystem::create_directories(settings_.output_dir);
     for (const auto& a : prog_.actions) {
       switch (a.what) {
@@ -139,6 +165,7 @@ class session {
 
   [[noreturn]] static void fail(const location& l, const std::string& msg) { throw lang_error(l, msg); }
   void note(const std::string& s) const {
+    if (progress_ && settings_.log) progress_->clear();  // the log may share the terminal
     if (settings_.log) *settings_.log << s << '\n';
   }
   static std::string num(double x) {
@@ -480,8 +507,18 @@ class session {
 
   struct stage_spec {
     run_options opt;
-    newmark_parameters scheme;
+    alpha_parameters scheme;  ///< the program's scheme, validated
+    double save = 0;          ///< SAVE: checkpoint interval (0: none)
+    location save_loc;        ///< where SAVE is
   };
+
+  /// The program that owns a scheme key (BETA, GAMMA, ALPHA, RHOINF), or "" for a common key.
+  static std::string owner_of_key(const std::string& k) {
+    if (k == "BETA" || k == "GAMMA") return "NEWMARK";
+    if (k == "ALPHA") return "HHT";
+    if (k == "RHOINF") return "GALPHA";
+    return "";
+  }
 
   stage_spec stage_options(const ast::call& c) const {
     const program_info* prog = find_program(integration_programs(), c.program);
@@ -492,12 +529,14 @@ class session {
       fail(c.program_loc, "unknown integration program '" + c.program + "'" + hint);
     }
     stage_spec s;
-    s.scheme = c.program == "SHTERM" ? newmark_parameters{0.5, 1.0} : newmark_parameters{};
+    newmark_parameters np{};
+    double alpha = hht{}.alpha(), rho = generalized_alpha{}.rho_inf();
     std::set<std::string> seen;
     bool has_end = false;
-    static const std::vector<std::string> known{"END",   "OUT",   "SMAX", "SMIN",   "IGNORE", "DABSU", "DRLTU",
-                                                "DABSI", "DRLTI", "ITR",  "SECOND", "BETA",   "GAMMA",
-                                                "DABSX", "DRLTX", "CONTROL", "PREDICT"};
+    static const std::vector<std::string> known{"END",   "OUT",   "SMAX",  "SMIN",    "IGNORE",  "DABSU",
+                                                "DRLTU", "DABSI", "DRLTI", "ITR",     "SECOND",  "BETA",
+                                                "GAMMA", "ALPHA", "RHOINF", "DABSX",  "DRLTX",   "CONTROL",
+                                                "PREDICT", "SAVE"};
     for (const auto& g : c.args)
       for (const auto& it : g) {
         if (it.what != ast::item::kind::keyed)
@@ -507,11 +546,19 @@ class session {
         const ast::item& v = it.value.front();
         bool is_unimpl = false;
         for (const auto& u : unimplemented_run_keys()) is_unimpl = is_unimpl || u == k;
-        if (is_unimpl)
+        if (is_unimpl) {
+          std::string own;
+          for (const char* q : {"BETA", "GAMMA", "ALPHA", "RHOINF"})
+            if (owner_of_key(q) == c.program) own += std::string(" ") + q;
           fail(it.loc, "key " + k + " of " + c.program +
                            " is not implemented by pradis yet (implemented: END OUT SMAX SMIN IGNORE DABSU DRLTU DABSI "
-                           "DRLTI ITR SECOND DABSX DRLTX CONTROL PREDICT" +
-                           (c.program == "NEWMARK" ? " BETA GAMMA" : "") + ")");
+                           "DRLTI ITR SECOND DABSX DRLTX CONTROL PREDICT SAVE" +
+                           own + ")");
+        }
+        const std::string owner = owner_of_key(k);
+        if (!owner.empty() && owner != c.program)
+          fail(it.loc, "key " + k + " belongs to " + owner + ", not to " + c.program +
+                           (c.program == "SHTERM" ? " (SHTERM has fixed BETA = 1/2, GAMMA = 1)" : ""));
         if (k == "END") {
           s.opt.end = scalar(v, "END");
           has_end = true;
@@ -547,19 +594,43 @@ class session {
         } else if (k == "PREDICT") {
           s.opt.predict = whole(v, "PREDICT", 0, 1) == 1;
           s.opt.error_control = true;
-        }
-        else if ((k == "BETA" || k == "GAMMA") && c.program == "SHTERM")
-          fail(it.loc, "key " + k + " belongs to NEWMARK; SHTERM has fixed BETA = 1/2, GAMMA = 1");
-        else if (k == "BETA")
-          s.scheme.beta = scalar(v, "BETA");
+        } else if (k == "SAVE") {
+          s.save = scalar(v, "SAVE");
+          s.save_loc = it.loc;
+          if (!(s.save > 0) || !std::isfinite(s.save))
+            fail(it.loc, "SAVE = " + num(s.save) +
+                             " must be a number > 0 (the interval of simulated time between checkpoints)");
+        } else if (k == "BETA")
+          np.beta = scalar(v, "BETA");
         else if (k == "GAMMA")
-          s.scheme.gamma = scalar(v, "GAMMA");
-        else
+          np.gamma = scalar(v, "GAMMA");
+        else if (k == "ALPHA") {
+          alpha = scalar(v, "ALPHA");
+          try {
+            (void)hht(alpha);
+          } catch (const pradis::error&) {
+            fail(it.loc, "HHT: ALPHA = " + num(alpha) + " is outside its valid range -1/3 <= ALPHA <= 0");
+          }
+        } else if (k == "RHOINF") {
+          rho = scalar(v, "RHOINF");
+          try {
+            (void)generalized_alpha(rho);
+          } catch (const pradis::error&) {
+            fail(it.loc, "GALPHA: RHOINF = " + num(rho) + " is outside its valid range 0 <= RHOINF <= 1");
+          }
+        } else
           fail(it.loc, "unknown key " + k + " of " + c.program + did_you_mean(k, known));
       }
     if (!has_end) fail(c.args_loc, c.program + " needs END=<end time>");
     try {
-      (void)newmark(s.scheme);
+      if (c.program == "SHTERM")
+        s.scheme = stoermer{}.coefficients_set();
+      else if (c.program == "NEWMARK")
+        s.scheme = newmark(np).coefficients_set();
+      else if (c.program == "HHT")
+        s.scheme = hht(alpha).coefficients_set();
+      else
+        s.scheme = generalized_alpha(rho).coefficients_set();
     } catch (const pradis::error& e) {
       fail(c.args_loc, e.message());
     }
@@ -629,31 +700,50 @@ class session {
     results_.add_row(s.time(), row);
   }
 
-  std::unique_ptr<sim_type> make_sim(const newmark_parameters& p) {
-    auto s = std::make_unique<sim_type>(*model_, newmark(p));
-    s->on_output([this](const sim_type& x) { record(x); });
+  std::unique_ptr<sim_type> make_sim(const alpha_parameters& p) {
+    auto s = std::make_unique<sim_type>(*model_, stage_scheme(p));
+    s->on_output([this](const sim_type& x) {
+      record(x);
+      if (progress_) {
+        const run_statistics& st = x.statistics();
+        progress_->update(x.time(), st.last_step, st.last_iterations, st.newton_iterations);
+      }
+    });
     return s;
   }
 
-  /// A simulation with the scheme p, continuing the current one (via an in-memory checkpoint) if any.
-  void use_scheme(const newmark_parameters& p) {
-    if (sim_ && scheme_.beta == p.beta && scheme_.gamma == p.gamma) return;
+  static bool same_scheme(const alpha_parameters& a, const alpha_parameters& b) {
+    return a.alpha_m == b.alpha_m && a.alpha_f == b.alpha_f && a.beta == b.beta && a.gamma == b.gamma;
+  }
+
+  /// A simulation with the scheme p, continuing the current one (via an in-memory
+  /// checkpoint) if any. A change of scheme starts the new one afresh (its
+  /// pseudo-acceleration p = a, as at t = 0), unless the previous scheme is not
+  /// known (a $RESTORE of a checkpoint without the session's scheme record).
+  void use_scheme(const alpha_parameters& p) {
+    if (sim_ && same_scheme(scheme_, p)) {
+      scheme_known_ = true;
+      return;
+    }
     auto next = make_sim(p);
     if (sim_ && started_) {
       std::stringstream ss;
       sim_->save_checkpoint(ss);
       next->load_checkpoint(ss);
+      if (scheme_known_) next->restart_scheme();
     }
     sim_ = std::move(next);
     scheme_ = p;
+    scheme_known_ = true;
   }
 
   [[noreturn]] void rethrow(const pradis::error& e, const ast::call& c) const {
     std::string what = std::string(e.element_type());
     if (!e.instance().empty()) what += (what.empty() ? "'" : " '") + e.instance() + "'";
     std::string msg = e.message();
-    if (e.code() == error_code::invalid_option && msg.rfind("NEWMARK: ", 0) == 0)
-      msg = c.program + ": " + msg.substr(9);
+    const std::string prefix = std::string(stage_scheme::name) + ": ";
+    if (e.code() == error_code::invalid_option && msg.rfind(prefix, 0) == 0)
+      msg = c.program + ": " + msg.substr(prefix.size());
     msg = (what.empty() ? "" : what + ": ") + msg + " (pradis error " + std::to_string(e.number()) + ", " +
           std::string(to_string(e.code())) + ")";
     if (!e.instance().empty())
@@ -662,23 +752,82 @@ class session {
     fail(c.loc, msg);
   }
 
+  /// The first checkpoint time of the SAVE grid after t: the smallest k SAVE > t
+  /// (k whole). The grid is absolute (multiples of SAVE from t = 0), so a run
+  /// restarted from a checkpoint meets the same checkpoint times.
+  static double next_save_time(double t, double save) {
+    double k = std::floor(t / save);
+    while (k * save <= t) k += 1;
+    return k * save;
+  }
+
+  /// Checks that the SAVE grid of a stage from t0 to end is usable.
+  void check_save(const stage_spec& st, double t0) const {
+    const double count = (st.opt.end - t0) / st.save;
+    if (count > max_checkpoints)
+      fail(st.save_loc, "SAVE = " + num(st.save) + " would write " + num(std::floor(count)) +
+                            " checkpoints in this stage (from t = " + num(t0) + " to END = " + num(st.opt.end) +
+                            "); at most " + num(max_checkpoints) + " are allowed");
+    if (st.opt.end / st.save > 1e11)
+      fail(st.save_loc, "SAVE = " + num(st.save) + " is too small for END = " + num(st.opt.end) +
+                            ": checkpoint times k SAVE need k <= 1e11");
+  }
+
+  /// Runs one stage; with SAVE, in pieces that end at the checkpoint times.
   void run_stage(const ast::call& c) {
     const stage_spec st = stage_options(c);  // again: $REPLACE may have changed $DATA values
     use_scheme(st.scheme);
-    if (started_ && !(st.opt.end > sim_->time()))
-      fail(c.args_loc, "END = " + num(st.opt.end) + " must be after the current time " + num(sim_->time()));
-    stage_report r{c.label, c.program, started_ ? sim_->time() : 0.0, st.opt.end, {}};
+    const double t0 = started_ ? sim_->time() : 0.0;
+    if (started_ && !(st.opt.end > t0))
+      fail(c.args_loc, "END = " + num(st.opt.end) + " must be after the current time " + num(t0));
+    if (st.save > 0) check_save(st, t0);
+    stage_report r{c.label, c.program, t0, st.opt.end, {}};
+    const run_statistics before = sim_->statistics();
+    struct progress_guard {
+      io::progress_line* p;
+      ~progress_guard() {
+        if (p) p->end();
+      }
+    } guard{progress_.get()};
+    if (progress_) progress_->begin((c.label.empty() ? "" : c.label + " ") + c.program, t0, st.opt.end);
     try {
-      r.stats = sim_->run(st.opt);
+      if (st.save > 0) {
+        for (;;) {
+          const double next = next_save_time(started_ ? sim_->time() : t0, st.save);
+          const double tol = 1e-9 * st.save;
+          const bool last = !(next < st.opt.end - tol);
+          run_options o = st.opt;
+          if (!last) o.end = next;
+          (void)sim_->run(o);
+          started_ = true;
+          if (!last || std::abs(next - st.opt.end) <= tol) write_interval_checkpoint(c);
+          if (last) break;
+        }
+      } else {
+        (void)sim_->run(st.opt);
+      }
     } catch (const pradis::error& e) {
       rethrow(e, c);
     }
     started_ = true;
+    r.stats = sim_->statistics() - before;
+    if (progress_) progress_->end();
     note("stage " + std::to_string(reports_.size() + 1) + (c.label.empty() ? "" : " '" + c.label + "'") + " " +
          c.program + ": t = " + num(r.t0) + " .. " + num(r.t1) + ", " + std::to_string(r.stats.steps) + " steps, " +
          std::to_string(r.stats.rejected_steps) + " rejected, " + std::to_string(r.stats.newton_iterations) +
          " Newton iterations");
     reports_.push_back(r);
+  }
+
+  /// `<stem>.t<time>.chk` in the output directory, time with 15 significant digits.
+  void write_interval_checkpoint(const ast::call& c) {
+    if (!settings_.write_files) return;
+    char t[40];
+    std::snprintf(t, sizeof t, "%.15g", sim_->time());
+    const std::string p = path_in_output(settings_.stem + ".t" + t + ".chk");
+    write_checkpoint(p, c.loc);
+    note("checkpoint: " + p + " (t = " + num(sim_->time()) + ", SAVE of " + c.program + ")");
+    files_.push_back(p);
   }
 
   std::string path_in_output(const std::string& name) const {
@@ -744,16 +893,31 @@ class session {
     }
   }
 
-  void save(const ast::action& a) {
-    if (!started_) fail(a.loc, "$SAVE before any stage has run: nothing to save");
-    const std::string p = path_in_output(a.path);
+  /// The record a session appends to a checkpoint: the scheme's four parameters
+  /// and this tag at the very end (a checkpoint of the library has none).
+  static constexpr char scheme_tag[8] = {'P', 'R', 'L', 'A', 'N', 'G', '0', '1'};
+  static constexpr std::size_t scheme_record = 4 * sizeof(double) + sizeof scheme_tag;
+
+  /// Writes the simulation's checkpoint followed by the scheme record.
+  void write_checkpoint(const std::string& p, const location& where) {
     std::ofstream f(p, std::ios::binary);
-    if (!f) fail(a.loc, "cannot write the checkpoint '" + p + "'");
+    if (!f) fail(where, "cannot write the checkpoint '" + p + "'");
     try {
       sim_->save_checkpoint(f);
     } catch (const pradis::error& e) {
-      fail(a.loc, e.message());
+      fail(where, e.message());
     }
+    const double q[4] = {scheme_.alpha_m, scheme_.alpha_f, scheme_.beta, scheme_.gamma};
+    f.write(reinterpret_cast<const char*>(q), sizeof q);
+    f.write(scheme_tag, sizeof scheme_tag);
+    f.flush();
+    if (!f) fail(where, "cannot write the checkpoint '" + p + "'");
+  }
+
+  void save(const ast::action& a) {
+    if (!started_) fail(a.loc, "$SAVE before any stage has run: nothing to save");
+    const std::string p = path_in_output(a.path);
+    write_checkpoint(p, a.loc);
     note("checkpoint: " + p + " (t = " + num(sim_->time()) + ")");
     files_.push_back(p);
   }
@@ -762,9 +926,27 @@ class session {
     const std::string p = path_in_output(a.path);
     std::ifstream f(p, std::ios::binary);
     if (!f) fail(a.loc, "cannot read the checkpoint '" + p + "'");
-    use_scheme(sim_ ? scheme_ : newmark_parameters{0.5, 1.0});
+    const std::string bytes{std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+    // The scheme that wrote it, if the session's record is there.
+    alpha_parameters q = stoermer{}.coefficients_set();
+    bool known = false;
+    if (bytes.size() >= scheme_record &&
+        std::memcmp(bytes.data() + bytes.size() - sizeof scheme_tag, scheme_tag, sizeof scheme_tag) == 0) {
+      double v[4];
+      std::memcpy(v, bytes.data() + bytes.size() - scheme_record, sizeof v);
+      // Ranges of the four programs: alpha_m, alpha_f < 1, 0 < beta <= 1, 1/2 <= gamma <= 3/2.
+      const bool ok = std::isfinite(v[0]) && std::isfinite(v[1]) && v[0] < 1 && v[1] < 1 && v[2] > 0 &&
+                      v[2] <= 1 && v[3] >= 0.5 && v[3] <= 1.5;
+      if (!ok) fail(a.loc, "checkpoint '" + p + "': its record of the integration scheme is damaged");
+      q = {v[0], v[1], v[2], v[3]};
+      known = true;
+    }
+    sim_ = make_sim(q);
+    scheme_ = q;
+    scheme_known_ = known;
+    std::istringstream is(bytes);
     try {
-      sim_->load_checkpoint(f);
+      sim_->load_checkpoint(is);
     } catch (const pradis::error& e) {
       fail(a.loc, "checkpoint '" + p + "': " + e.message());
     }
@@ -784,7 +966,9 @@ class session {
   std::size_t instances_ = 0;
   io::table results_{std::vector<std::string>{}};
   std::unique_ptr<sim_type> sim_;
-  newmark_parameters scheme_{};
+  alpha_parameters scheme_{};
+  bool scheme_known_ = false;  ///< false after restoring a checkpoint without the scheme record
+  std::unique_ptr<io::progress_line> progress_;
   bool started_ = false;
   int displays_ = 0;
   run_settings settings_;
