@@ -168,6 +168,30 @@ TEST_CASE("output sampling at OUT: observer at t0 and exactly at t_start + k OUT
   CHECK(st.steps == 10);
 }
 
+TEST_CASE("on_step: called once per accepted step, with the step's time and statistics") {
+  oscillator_scene sc;
+  simulation sim(sc.m, newmark{});
+  std::vector<double> t, h;
+  long outputs = 0;
+  sim.on_step([&](const auto& s) {
+    t.push_back(s.time());
+    h.push_back(s.statistics().last_step);
+  });
+  sim.on_output([&](const auto&) { ++outputs; });
+  // OUT = 0.1 with SMAX = 0.01: ten steps per output, so steps and outputs differ.
+  const auto st = sim.run(stage(1.0, 0.01, 0.1));
+  REQUIRE(static_cast<long>(t.size()) == st.steps);
+  CHECK(outputs == 11);  // t0 and ten output times
+  double sum = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    CAPTURE(k);
+    if (k > 0) CHECK(t[k] > t[k - 1]);
+    sum += h[k];
+    CHECK(t[k] == doctest::Approx(sum).epsilon(1e-12));  // time advances by the reported step
+  }
+  CHECK(t.back() == 1.0);
+}
+
 TEST_CASE("run statistics and statistic() by output-variable name") {
   oscillator_scene sc;
   simulation sim(sc.m, newmark{});

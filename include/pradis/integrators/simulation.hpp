@@ -106,6 +106,9 @@ class simulation<model<Es...>, Scheme, Solver> {
   diagnostics& log() noexcept { return log_; }
   /// Adds an observer called at t0 (after the zero step) and at every output time.
   void on_output(observer f) { observers_.push_back(std::move(f)); }
+  /// Adds an observer called after every accepted step (before the output observers of
+  /// that step), e.g. for a progress display. Keep it cheap: it runs once per step.
+  void on_step(observer f) { step_observers_.push_back(std::move(f)); }
 
   /// Runs one stage up to opt.end. The first call performs the zero step.
   /// Returns the statistics of this stage. Throws pradis::error on bad options
@@ -156,6 +159,7 @@ class simulation<model<Es...>, Scheme, Solver> {
         continue;
       }
       if (outcome == step_outcome::accepted) {
+        for (auto& f : step_observers_) f(*this);
         if (opt.error_control)
           h_nominal_ = clipped ? std::max(h_nominal_, h_error_) : h_error_;
         else if (!clipped || h >= h_nominal_)
@@ -809,6 +813,7 @@ class simulation<model<Es...>, Scheme, Solver> {
   assembler<model_type> asm_;
   diagnostics log_;
   std::vector<observer> observers_;
+  std::vector<observer> step_observers_;
   global_state s_, s0_;
   std::vector<char> prescribed_;
   Eigen::VectorXd dv_;

@@ -704,12 +704,17 @@ class session {
     auto s = std::make_unique<sim_type>(*model_, stage_scheme(p));
     s->on_output([this](const sim_type& x) {
       record(x);
-      if (progress_) {
-        const run_statistics& st = x.statistics();
-        progress_->update(x.time(), st.last_step, st.last_iterations, st.newton_iterations);
-      }
+      show_progress(x);  // also at t0, before the first step
     });
+    // Every accepted step; the line itself redraws at most ten times a second.
+    if (progress_) s->on_step([this](const sim_type& x) { show_progress(x); });
     return s;
+  }
+
+  void show_progress(const sim_type& x) {
+    if (!progress_) return;
+    const run_statistics& st = x.statistics();
+    progress_->update(x.time(), st.last_step, st.last_iterations, st.newton_iterations);
   }
 
   static bool same_scheme(const alpha_parameters& a, const alpha_parameters& b) {
