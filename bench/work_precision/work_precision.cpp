@@ -1,7 +1,8 @@
 // Work-precision benchmark: error at the final time against CPU time for the
 // pradis integrators (error-controlled tolerance sweep and fixed-step sweep) and
 // for peers on the same equations (SUNDIALS IDA and CVODE BDF, Boost.Odeint
-// runge_kutta_dopri5; rosenbrock4 only with PRADIS_WP_ROSENBROCK4, see below),
+// runge_kutta_dopri5 and rosenbrock4; rosenbrock4 is compiled as C++17 in its own
+// library, rosenbrock4_peer.cpp, because Boost 1.74's uBLAS is not C++20),
 // following Hairer-Wanner / DiffEqDevTools:
 // reference from a closed form, CPU time = minimum of 3 runs after one warm-up,
 // all solvers in one process.
@@ -17,8 +18,24 @@
 //             slow mode); exact modal solution.
 //   fpu       Fermi-Pasta-Ulam chain (Hairer-Lubich-Wanner I.5.1), omega = 50, to
 //             t = 10; reference by RK4 with h = 1e-5.
-// Error at the final time: max(|u - u_ref|_inf / |u_ref|_inf, |v - v_ref|_inf / |v_ref|_inf)
-// (u all displacements, v all velocities).
+//   twobody   the two-body system of the PRADIS element developer's manual (Fig. 3.3,
+//             section 3.6.9: MD, MD, LINKD, F; two_bodies_problem.hpp), to the manual's
+//             END = 1 s: an elastic dumbbell (link frequency 87 rad/s) swinging through
+//             large angles while it falls. The pradis runs use the pradis model
+//             (planar_inertia, planar_link, constant_force); the peers integrate
+//             M u'' + g(u) = 0 written out in two_bodies_problem.hpp, which
+//             tests/integrators/test_two_bodies_peer.cpp checks against pradis's
+//             assembled residual. Reference: classical RK4 with h = 1e-5 on those
+//             equations, checked at start-up against RK4 with h = 2e-5, IDA at
+//             rtol = atol = 1e-12, and the pradis model under Newmark with fixed steps
+//             (Richardson extrapolation of h = 2e-5 and 1e-5).
+// Error at the final time: max(|u - u_ref|_inf / |s_u|_inf, |v - v_ref|_inf / |s_v|_inf)
+// (u all displacements, v all velocities), where the scale s is the reference state
+// itself, except for twobody: there s is the reference state about the centre of
+// mass (the exact free fall Y_c = P t^2 / (2 (m1 + m2)), 167 m at t = 1, subtracted
+// from the Y DOFs), since the free fall, which every method integrates exactly or
+// nearly so, would otherwise make every error look 2000 times smaller than the
+// error of the motion of interest. The numerator is the plain state error.
 //
 // Usage: work_precision [--smoke] [--out FILE] [--only PROBLEM]
 //   (default FILE docs/data/work_precision.csv)
@@ -42,6 +59,7 @@
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "two_bodies_problem.hpp"
 
 #ifdef PRADIS_WP_SUNDIALS
 #include <cvode/cvode.h>
@@ -55,9 +73,7 @@
 #include <boost/numeric/odeint/integrate/integrate_adaptive.hpp>
 #include <boost/numeric/odeint/stepper/generation.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
-#ifdef PRADIS_WP_ROSENBROCK4
-#include <boost/numeric/odeint.hpp>
-#endif
+#include "rosenbrock4_peer.h"
 #endif
 
 namespace wp {
@@ -105,6 +121,8 @@ struct problem {
   std::function<void(double, const double*, const double*, double*)> g;            // g(t, u, v)
   std::function<void(double, const double*, const double*, Eigen::MatrixXd&, Eigen::MatrixXd&)> dg;  // dg/du, dg/dv
   std::function<Eigen::VectorXd()> exact;  // (u, v) at t_end
+  /// The state whose norms scale the error (empty: the reference state itself).
+  std::function<Eigen::VectorXd(const Eigen::VectorXd&)> error_scale;
 };
 
 constexpr double pend_g = 9.81, pend_l = 1.0, pend_m = 1.0;
@@ -236,12 +254,40 @@ inline problem fpu() {
   return p;
 }
 
-/// max(|u - u_ref|_inf / |u_ref|_inf, |v - v_ref|_inf / |v_ref|_inf): relative
-/// error of the displacements and of the velocities at the final time.
-inline double state_error(const Eigen::VectorXd& y, const Eigen::VectorXd& ref) {
+/// The manual's two-body system (two_bodies_problem.hpp) to END = 1 s.
+inline problem twobody() {
+  namespace tb = two_bodies;
+  problem p;
+  p.name = "twobody";
+  p.n = tb::n;
+  p.mass = tb::mass();
+  p.u0.assign(tb::n, 0.0);
+  p.v0.assign(tb::n, 0.0);
+  p.t_end = 1.0;
+  p.g = [](double, const double* u, const double*, double* out) { tb::forces(u, out); };
+  p.dg = [](double, const double* u, const double*, Eigen::MatrixXd& gu, Eigen::MatrixXd& gv) {
+    tb::stiffness(u, gu);
+    gv.setZero();
+  };
+  p.error_scale = [t = p.t_end](const Eigen::VectorXd& ref) {
+    Eigen::VectorXd s = ref;
+    for (int i : {1, 4}) {
+      s(i) -= tb::yc(t);
+      s(tb::n + i) -= tb::vc(t);
+    }
+    return s;
+  };
+  return p;
+}
+
+/// max(|u - u_ref|_inf / |s_u|_inf, |v - v_ref|_inf / |s_v|_inf): relative error
+/// of the displacements and of the velocities at the final time, scaled by the
+/// state `scale` (the reference itself, or for twobody the reference about the
+/// centre of mass).
+inline double state_error(const Eigen::VectorXd& y, const Eigen::VectorXd& ref, const Eigen::VectorXd& scale) {
   const Eigen::Index n = ref.size() / 2;
-  const double eu = (y.head(n) - ref.head(n)).cwiseAbs().maxCoeff() / ref.head(n).cwiseAbs().maxCoeff();
-  const double ev = (y.tail(n) - ref.tail(n)).cwiseAbs().maxCoeff() / ref.tail(n).cwiseAbs().maxCoeff();
+  const double eu = (y.head(n) - ref.head(n)).cwiseAbs().maxCoeff() / scale.head(n).cwiseAbs().maxCoeff();
+  const double ev = (y.tail(n) - ref.tail(n)).cwiseAbs().maxCoeff() / scale.tail(n).cwiseAbs().maxCoeff();
   const double e = std::max(eu, ev);
   return std::isfinite(e) ? e : 1e300;
 }
@@ -374,6 +420,12 @@ run_result run_pradis(const problem& pb, Scheme scheme, const pradis_setting& st
     m.add<cubic_spring>("soft3", {4.0}, q[5], m.ground());
     simulation sim(m, scheme);
     finish(sim, q);
+  } else if (pb.name == "twobody") {
+    two_bodies::model_type m;
+    std::vector<dof> d;
+    two_bodies::build(m, d);
+    simulation sim(m, scheme);
+    finish(sim, d);
   } else {
     using s = stiff_data;
     model<point_mass, linear_spring, linear_damper, initial_displacement> m;
@@ -398,7 +450,7 @@ run_result run_pradis(const problem& pb, Scheme scheme, const pradis_setting& st
 
 inline void rhs(const problem& pb, double t, const double* y, double* dy) {
   const int n = pb.n;
-  double g[8];
+  double g[16];
   pb.g(t, y, y + n, g);
   for (int i = 0; i < n; ++i) {
     dy[i] = y[n + i];
@@ -445,7 +497,7 @@ inline int ida_res(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* u
   const double *y = N_VGetArrayPointer(yy), *p = N_VGetArrayPointer(yp);
   double* r = N_VGetArrayPointer(rr);
   const int n = pb.n;
-  double g[8];
+  double g[16];
   pb.g(t, y, y + n, g);
   for (int i = 0; i < n; ++i) {
     r[i] = p[i] - y[n + i];
@@ -540,43 +592,43 @@ inline run_result run_dopri5(const problem& pb, double rtol) {
   return r;
 }
 
-// rosenbrock4 needs uBLAS, whose Boost <= 1.74 storage (Debian 12) calls
-// std::allocator::construct, removed in C++20: enabled only with PRADIS_WP_ROSENBROCK4
-// (a newer Boost).
-#ifdef PRADIS_WP_ROSENBROCK4
+/// Jacobian of the first-order form y' = (v, -M^-1 g(t, u, v)), row-major, for rosenbrock4.
+inline void first_order_jacobian(const problem& pb, double t, const double* y, double* j, double* dfdt) {
+  const int n = pb.n, n2 = 2 * n;
+  Eigen::MatrixXd gu(n, n), gv(n, n);
+  pb.dg(t, y, y + n, gu, gv);
+  for (int a = 0; a < n2 * n2; ++a) j[a] = 0;
+  for (int a = 0; a < n2; ++a) dfdt[a] = 0;  // all problems are autonomous
+  for (int a = 0; a < n; ++a) {
+    j[a * n2 + n + a] = 1;
+    for (int b = 0; b < n; ++b) {
+      j[(n + a) * n2 + b] = -gu(a, b) / pb.mass[static_cast<std::size_t>(a)];
+      j[(n + a) * n2 + n + b] = -gv(a, b) / pb.mass[static_cast<std::size_t>(a)];
+    }
+  }
+}
+
+/// Boost.Odeint rosenbrock4 (C++17 library, rosenbrock4_peer.h) with atol = rtol.
 inline run_result run_rosenbrock4(const problem& pb, double rtol) {
-  using vec = boost::numeric::ublas::vector<double>;
-  using mat = boost::numeric::ublas::matrix<double>;
-  const int n = pb.n;
-  vec y(static_cast<std::size_t>(2 * n));
-  for (int i = 0; i < n; ++i)
+  const int n2 = 2 * pb.n;
+  std::vector<double> y(static_cast<std::size_t>(n2));
+  for (int i = 0; i < pb.n; ++i)
     y[static_cast<std::size_t>(i)] = pb.u0[static_cast<std::size_t>(i)],
-                              y[static_cast<std::size_t>(n + i)] = pb.v0[static_cast<std::size_t>(i)];
-  auto f = [&](const vec& x, vec& dx, double t) { rhs(pb, t, &x[0], &dx[0]); };
-  auto jac = [&](const vec& x, mat& j, double t, vec& dfdt) {
-    Eigen::MatrixXd gu(n, n), gv(n, n);
-    pb.dg(t, &x[0], &x[static_cast<std::size_t>(n)], gu, gv);
-    for (int a = 0; a < 2 * n; ++a) {
-      dfdt[static_cast<std::size_t>(a)] = 0;
-      for (int b = 0; b < 2 * n; ++b) j(static_cast<std::size_t>(a), static_cast<std::size_t>(b)) = 0;
-    }
-    for (int a = 0; a < n; ++a) {
-      const auto ua = static_cast<std::size_t>(a), va = static_cast<std::size_t>(n + a);
-      j(ua, va) = 1;
-      for (int b = 0; b < n; ++b) {
-        j(va, static_cast<std::size_t>(b)) = -gu(a, b) / pb.mass[ua];
-        j(va, static_cast<std::size_t>(n + b)) = -gv(a, b) / pb.mass[ua];
-      }
-    }
+                              y[static_cast<std::size_t>(pb.n + i)] = pb.v0[static_cast<std::size_t>(i)];
+  auto f = [](void* u, double t, const double* x, double* dx) { rhs(*static_cast<const problem*>(u), t, x, dx); };
+  auto jac = [](void* u, double t, const double* x, double* j, double* dfdt) {
+    first_order_jacobian(*static_cast<const problem*>(u), t, x, j, dfdt);
   };
+  const wp_r4_result res = wp_rosenbrock4(n2, y.data(), 0.0, pb.t_end, rtol, rtol, 1e-6, f, jac,
+                                          const_cast<problem*>(&pb));
   run_result r;
-  r.steps = static_cast<long>(odeint::integrate_adaptive(odeint::make_controlled<odeint::rosenbrock4<double>>(rtol, rtol),
-                                                         std::make_pair(f, jac), y, 0.0, pb.t_end, 1e-6));
-  r.fact = r.steps;  // one LU per (accepted) step, rejected ones not counted by odeint
-  r.y = Eigen::Map<Eigen::VectorXd>(&y[0], 2 * n);
+  r.ok = res.ok != 0;
+  r.steps = res.steps;
+  r.newton = 0;            // linearly implicit: no Newton iterations (4 linear solves per step)
+  r.fact = res.jacobians;  // one Jacobian and LU per attempted step
+  r.y = Eigen::Map<Eigen::VectorXd>(y.data(), n2);
   return r;
 }
-#endif
 #endif
 
 // ---------------------------------------------------------------------------
@@ -592,7 +644,8 @@ inline double cpu_now() {
 struct bench {
   bool smoke = false;
   std::string only;  // run one problem only (--only NAME)
-  Eigen::VectorXd ref;  // reference state of the current problem
+  Eigen::VectorXd ref;    // reference state of the current problem
+  Eigen::VectorXd scale;  // state whose norms scale the error
   std::ofstream csv;
   int rows = 0;
 
@@ -610,7 +663,7 @@ struct bench {
       best = std::min(best, cpu_now() - t0);
       if (best > 20) break;  // a very slow point: one timing is enough
     }
-    const double err = r.ok ? state_error(r.y, ref) : 1e300;
+    const double err = r.ok ? state_error(r.y, ref, scale) : 1e300;
     csv << pb.name << ',' << solver << ',' << method << ',' << setting << ',' << err << ',' << best << ','
         << r.steps << ',' << r.newton << ',' << r.fact << '\n';
     csv.flush();
@@ -630,8 +683,9 @@ struct bench {
       measure(pb, "pradis", method, s, [&] { return run_pradis(pb, scheme, {.error_control = true, .tol = tol}); });
     }
     if (!fixed) return;
-    // Fixed-step sweep: h from 1e-2 (pendulum) / 1e-3 (stiff) down by factors of 4.
-    const double h0 = pb.name == "stiff" ? 1e-3 : 1e-2;
+    // Fixed-step sweep: h from 1e-2 (pendulum, fpu) / 2e-3 (twobody) / 1e-3 (stiff)
+    // down by factors of 4.
+    const double h0 = pb.name == "stiff" ? 1e-3 : (pb.name == "twobody" ? 2e-3 : 1e-2);
     const int nh = smoke ? 1 : (pb.name == "stiff" ? 4 : 5);
     for (int k = 0; k < nh; ++k) {
       const double h = h0 / std::pow(4.0, k);
@@ -653,22 +707,51 @@ struct bench {
       measure(pb, "CVODE", "BDF", s, [&] { return run_cvode(pb, tol); });
 #endif
 #ifdef PRADIS_WP_BOOST
-#ifdef PRADIS_WP_ROSENBROCK4
       measure(pb, "odeint", "rosenbrock4", s, [&] { return run_rosenbrock4(pb, tol); });
-#endif
       measure(pb, "odeint", "dopri5", s, [&] { return run_dopri5(pb, tol); });
 #endif
       (void)s;
     }
   }
 
-  void all() {
+  /// Checks the twobody reference (RK4, h = 1e-5) against RK4 with h = 2e-5, IDA
+  /// at 1e-12 and the pradis model under fixed-step Newmark extrapolated from
+  /// h = 2e-5 and 1e-5 (error O(h^2), so (4 y(h/2) - y(h)) / 3 is O(h^4) for this
+  /// smooth motion). Returns false if two of them differ by more than 1e-8 (the
+  /// smallest errors plotted for this problem are about 1e-9 .. 1e-7).
+  bool check_twobody_reference(const problem& pb) {
+    const double rk_half = state_error(rk4_reference(pb, 2e-5), ref, scale);
+    const run_result p1 = run_pradis(pb, pradis::newmark{}, {.error_control = false, .h = 2e-5});
+    const run_result p2 = run_pradis(pb, pradis::newmark{}, {.error_control = false, .h = 1e-5});
+    const Eigen::VectorXd extrapolated = (4 * p2.y - p1.y) / 3;
+    const double pr = state_error(extrapolated, ref, scale);
+    double worst = std::max(rk_half, pr);
+    std::printf("twobody reference (RK4 h=1e-5): vs RK4 h=2e-5 %.2e, vs pradis Newmark extrapolated %.2e "
+                "(h=1e-5 alone %.2e)",
+                rk_half, pr, state_error(p2.y, ref, scale));
+#ifdef PRADIS_WP_SUNDIALS
+    const double ida = state_error(run_ida(pb, 1e-12).y, ref, scale);
+    worst = std::max(worst, ida);
+    std::printf(", vs IDA 1e-12 %.2e", ida);
+#endif
+    std::printf("\n");
+    return p1.ok && p2.ok && worst < 1e-8;
+  }
+
+  bool all() {
     csv << "problem,solver,method,setting,error,cpu_s,steps,newton_iters,factorizations\n";
     problem chain = fpu();
     chain.exact = [&chain] { return rk4_reference(chain, 1e-5); };
-    for (const problem& pb : {pendulum(), stiff(), chain}) {
+    problem tb = twobody();
+    tb.exact = [&tb] { return rk4_reference(tb, 1e-5); };
+    for (const problem& pb : {pendulum(), tb, stiff(), chain}) {
       if (!only.empty() && pb.name != only) continue;
       ref = pb.exact();
+      scale = pb.error_scale ? pb.error_scale(ref) : ref;
+      if (pb.name == "twobody" && !smoke && !check_twobody_reference(pb)) {
+        std::fprintf(stderr, "twobody: the reference does not agree with the other methods to 1e-8\n");
+        return false;
+      }
       pradis_sweeps(pb, pradis::stoermer{}, "Stoermer", true);
       pradis_sweeps(pb, pradis::newmark{}, "Newmark", true);
       pradis_sweeps(pb, pradis::hht(-0.1), "HHT-0.1", false);
@@ -676,6 +759,7 @@ struct bench {
       pradis_sweeps(pb, pradis::generalized_alpha(0.8), "GA-rho0.8", false);
       peers(pb);
     }
+    return true;
   }
 };
 
@@ -690,7 +774,7 @@ int main(int argc, char** argv) {
     else if (a == "--out" && i + 1 < argc) out = argv[++i];
     else if (a == "--only" && i + 1 < argc) b.only = argv[++i];
     else {
-      std::cerr << "usage: work_precision [--smoke] [--out FILE] [--only pendulum|stiff|fpu]\n";
+      std::cerr << "usage: work_precision [--smoke] [--out FILE] [--only pendulum|twobody|stiff|fpu]\n";
       return 2;
     }
   }
@@ -718,7 +802,7 @@ int main(int argc, char** argv) {
 #endif
             << " (those peers are skipped)\n";
 #endif
-  b.all();
+  if (!b.all()) return 1;
   std::printf("%d rows written to %s\n", b.rows, out.c_str());
   return b.rows > 0 ? 0 : 1;
 }

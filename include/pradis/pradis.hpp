@@ -10,6 +10,8 @@
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "pradis/integrators/statistics_io.hpp"
+#include "pradis/integrators/tolerance_ladder.hpp"
 #include "pradis/linalg/ordering.hpp"
 #include "pradis/linalg/sparse_lu.hpp"
 #include "pradis/model/model.hpp"

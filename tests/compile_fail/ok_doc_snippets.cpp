@@ -12,6 +12,8 @@
 
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "pradis/integrators/statistics_io.hpp"
+#include "pradis/integrators/tolerance_ladder.hpp"
 #include "pradis/testing/jacobian_check.hpp"
 
 // An element around the NEW/OLD snippet: a constant force that also accumulates
@@ -123,6 +125,9 @@ void inline_code_of_other_docs() {
   // architecture.md, "Diagnostics"
   sim2.log().to(std::cerr);
   (void)sim2.statistic("NSTEP");
+  // architecture.md, "simulation<Model, Scheme, Solver>"
+  std::cout << sim2.statistics() << "\n";
+  tolerance_ladder(m, {.end = 0.1}, newmark{}).print(std::cout);
   static_assert(linalg::OrderingPolicy<linalg::min_degree_ordering>);
   static_assert(Integrator<stoermer>);
 }
