@@ -9,6 +9,7 @@
 #include <numeric>
 #include <random>
 #include <set>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -195,6 +196,20 @@ long fill_of(const sparsity_pattern& p) {
   return lu.statistics().fill;
 }
 
+/// Ordering policy that returns a given permutation.
+struct fixed_ordering {
+  static constexpr std::string_view name = "fixed";
+  std::vector<int> perm;
+  std::vector<int> operator()(const sparsity_pattern&) const { return perm; }
+};
+
+/// Fill of the sparse LU of pattern p under the pivot order perm.
+long fill_with(const sparsity_pattern& p, std::vector<int> perm) {
+  sparse_lu<fixed_ordering> lu(fixed_ordering{std::move(perm)});
+  lu.analyze(p);
+  return lu.statistics().fill;
+}
+
 }  // namespace
 
 TEST_SUITE("linalg") {
@@ -220,18 +235,47 @@ TEST_SUITE("linalg") {
     CHECK(g.col == std::vector<int>{2, 2, 0, 1});
   }
 
-  TEST_CASE("min_degree picks exactly the minimum degree node with lowest-index ties at every step") {
+  TEST_CASE("min_degree starts at a minimum-degree node and fills about as little as exact minimum degree") {
+    // min_degree uses approximate external degrees and supervariables, so it need not pick the
+    // exact minimum at every step; the reference here is the exact one-at-a-time minimum
+    // degree order (brute force above, lowest index on ties). Measured: per pattern at most
+    // 3.9% more fill than the reference (588 against 566), in total 1.1% less.
+    long sum_md = 0, sum_exact = 0;
     for (const unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
       for (const double density : {0.03, 0.08, 0.2}) {
         const auto m = random_matrix(60, density, seed * 31u + static_cast<unsigned>(density * 100), seed % 2 == 0);
         CAPTURE(seed);
         CAPTURE(density);
-        CHECK(min_degree_ordering{}(m.pattern) == brute_force_min_degree(m.pattern));
+        const auto perm = min_degree_ordering{}(m.pattern);
+        const auto exact = brute_force_min_degree(m.pattern);
+        // Initial degrees are exact, so the first pivot has the minimum degree of the graph.
+        const auto g = pradis::linalg::symmetric_adjacency(m.pattern);
+        auto deg = [&g](int i) { return g.row_ptr[i + 1] - g.row_ptr[i]; };
+        CHECK(deg(perm.front()) == deg(exact.front()));
+        const long f_md = fill_of<min_degree_ordering>(m.pattern);
+        const long f_exact = fill_with(m.pattern, exact);
+        CHECK(f_md <= f_exact + f_exact / 10 + 2);
+        sum_md += f_md;
+        sum_exact += f_exact;
       }
     }
-    const auto g = grid_laplacian(9, 7);
-    CHECK(min_degree_ordering{}(g.pattern) == brute_force_min_degree(g.pattern));
+    MESSAGE("random patterns, total fill: min_degree " << sum_md << ", exact minimum degree " << sum_exact);
+    CHECK(sum_md * 100 <= sum_exact * 102);
     CHECK(min_degree_ordering{}(sparsity_pattern{}).empty());
+  }
+
+  TEST_CASE("min_degree on k x k grids fills at most 5% more than exact minimum degree") {
+    // Reference: the exact minimum degree order (brute force above). Measured ratios
+    // 0.98 (k = 10), 0.99 (k = 20), 0.98 (k = 30), 1.00 (9 x 7).
+    for (const auto& [nx, ny] : std::vector<std::pair<int, int>>{{9, 7}, {10, 10}, {20, 20}, {30, 30}}) {
+      const auto g = grid_laplacian(nx, ny);
+      const long f_md = fill_of<min_degree_ordering>(g.pattern);
+      const long f_exact = fill_with(g.pattern, brute_force_min_degree(g.pattern));
+      CAPTURE(nx);
+      CAPTURE(ny);
+      MESSAGE(nx << "x" << ny << " grid fill: min_degree " << f_md << ", exact minimum degree " << f_exact);
+      CHECK(f_md * 100 <= f_exact * 105);
+    }
   }
 
   TEST_CASE("sparse LU matches dense Eigen on random structurally symmetric diagonally strong matrices") {
