@@ -218,6 +218,9 @@ void check_element_does_not_allocate() {
     in.v(k) = 0.1 * (k + 1) - 0.2;
     in.a(k) = 0.5 * (k + 1) - 1.0;
   }
+  // Rotational nodes: a unit quaternion (the vector part as above, q4 completing the norm).
+  for (const rotation_slot& sl : element_traits<E>::rotation_nodes)
+    in.u(sl.q4) = std::sqrt(1.0 - in.u.segment(sl.q1, 3).squaredNorm());
   in.t = 0.25;
   local_output<E> out, out_nojac;
   out_nojac.want_jacobian = false;
