@@ -386,4 +386,51 @@ TEST_SUITE("spatial/elements") {
     const double theta = 2.0 + 0.25;
     CHECK(angle_between(node_quaternion(*s.simulation_ptr(), *node), from_axis_angle(vec3::UnitZ(), theta)) < 1e-6);
   }
+
+  TEST_CASE("F3, M3, F3B, M3B refuse a negative frequency or a non-finite load (100) and a wrong count (101)") {
+    const spatial_load_parameters negative_f{1, 0, 0, 1, 0, 0, -2.0, 0};
+    const spatial_load_parameters infinite{std::numeric_limits<double>::infinity(), 0, 0, 0, 0, 0, 1.0, 0};
+    model<rigid_body, spatial_force, spatial_torque, body_force, body_torque> m0;
+    for (int which = 0; which < 4; ++which)
+      for (int bad = 0; bad < 2; ++bad) {
+        const spatial_load_parameters lp = bad == 0 ? negative_f : infinite;
+        const char* mention = bad == 0 ? "frequency f" : "must be finite";
+        model<rigid_body, spatial_force, spatial_torque, body_force, body_torque> m;
+        const auto x = m.add_dofs(3);
+        const rotation_node r = m.add_rotation_node("r");
+        m.add<rigid_body>("body", body(1, 1, 1, 1), x[0], x[1], x[2], r);
+        const char* type = "";
+        if (which == 0) {
+          type = "F3";
+          m.add<spatial_force>("load", lp, x[0], x[1], x[2]);
+        }
+        if (which == 1) {
+          type = "M3";
+          m.add<spatial_torque>("load", lp, r);
+        }
+        if (which == 2) {
+          type = "F3B";
+          m.add<body_force>("load", lp, x[0], x[1], x[2], r);
+        }
+        if (which == 3) {
+          type = "M3B";
+          m.add<body_torque>("load", lp, r);
+        }
+        CAPTURE(type);
+        simulation sim(m);
+        check_error(error_from([&] { sim.run({.end = 0.1, .smax = 0.01}); }), error_code::invalid_parameter, type,
+                    "load", mention);
+      }
+    const auto d = m0.add_dofs(6);
+    const std::array<double, 7> seven{};
+    for (const char* name : {"F3", "M3", "M3B"}) {
+      CAPTURE(name);
+      check_error(error_from([&] { m0.add_by_name(name, std::string("n") + name, std::span(d).first(3), seven); }),
+                  error_code::parameter_count, name, std::string("n") + name, "got 7 parameters");
+    }
+    check_error(error_from([&] { m0.add_by_name("F3B", "nF3B", d, seven); }), error_code::parameter_count, "F3B",
+                "nF3B", "got 7 parameters");
+    check_error(error_from([&] { m0.add_by_name("BODY3", "nB", d, seven); }), error_code::parameter_count, "BODY3",
+                "nB", "got 7 parameters");
+  }
 }
