@@ -15,3 +15,5 @@
 #include "pradis/linalg/ordering.hpp"
 #include "pradis/linalg/sparse_lu.hpp"
 #include "pradis/model/model.hpp"
+#include "pradis/spatial/node_state.hpp"
+#include "pradis/spatial/quaternion.hpp"

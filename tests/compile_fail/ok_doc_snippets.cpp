@@ -14,6 +14,7 @@
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/integrators/statistics_io.hpp"
 #include "pradis/integrators/tolerance_ladder.hpp"
+#include "pradis/spatial/node_state.hpp"
 #include "pradis/testing/jacobian_check.hpp"
 
 // An element around the NEW/OLD snippet: a constant force that also accumulates
@@ -132,7 +133,34 @@ void inline_code_of_other_docs() {
   static_assert(Integrator<stoermer>);
 }
 
+void rotations_api() {
+  // doc: rotations.md, "API" (verbatim)
+  using namespace pradis;
+  using namespace pradis::elements;
+
+  model<rigid_body, spatial_torque, initial_rotation> m;
+  const auto x = m.add_dofs(3, "x");                 // translations of the reference point
+  const rotation_node r = m.add_rotation_node("r");  // q1, q2, q3 = r.q1, r.q2, r.q3; hidden r.q4
+  m.add<rigid_body>("body", {.m = 1, .jxx = 2, .jyy = 1, .jzz = 0.5}, x[0], x[1], x[2], r);
+  m.add<spatial_torque>("motor", {.p0z = 1.0}, r);   // a rotation_node stands for its q1, q2, q3
+  m.add<initial_rotation>("start", {.ex = 0, .ey = 0, .ez = 1, .angle_deg = 30, .wz = 2.0}, r);
+  // or from a matrix: initial_rotation::from_matrix(R0, omega0)
+
+  simulation sim(m);
+  sim.run({.end = 1.0, .smax = 1e-3});
+  spatial::mat3 R = spatial::node_rotation(sim, r);             // also node_quaternion, node_rate,
+  spatial::vec3 w = spatial::node_angular_velocity(sim, r);     // node_norm, node_body_angular_velocity
+  // end doc
+  // rotations.md, "Fixing angular DOFs" and "For element authors"
+  model<rigid_body> m2;
+  const dof qz = m2.add_dof("qz");
+  const rotation_node r2 = m2.add_rotation_node("r", m2.ground(), m2.ground(), qz);
+  static_assert(element_traits<rigid_body>::rotation_nodes[0] == rotation_slot{.q1 = 3, .q4 = 6});
+  std::printf("%g %g %d\n", R(0, 0), w(2), r2.q4.index);
+}
+
 int main() {
+  rotations_api();
   listing_in_a_model();
   checking_the_jacobian();
   inline_code_of_other_docs();

@@ -218,6 +218,9 @@ void check_element_does_not_allocate() {
     in.v(k) = 0.1 * (k + 1) - 0.2;
     in.a(k) = 0.5 * (k + 1) - 1.0;
   }
+  // Rotational nodes: a unit quaternion (the vector part as above, q4 completing the norm).
+  for (const rotation_slot& sl : element_traits<E>::rotation_nodes)
+    in.u(sl.q4) = std::sqrt(1.0 - in.u.segment(sl.q1, 3).squaredNorm());
   in.t = 0.25;
   local_output<E> out, out_nojac;
   out_nojac.want_jacobian = false;
@@ -445,5 +448,23 @@ TEST_SUITE("core/allocation") {
     CHECK(one.steps == 1);
     CHECK(many.steps == 16);
     CHECK(std::isfinite(sim.v(dof{m.dof_count() - 2})));
+  }
+
+  TEST_CASE("steps of a spatial model (BODY3, M3B, F3B on a rotational node with its norm equation) do not allocate") {
+    model<rigid_body, body_torque, body_force, initial_rotation> m;
+    const auto x = m.add_dofs(3, "x");
+    const rotation_node r = m.add_rotation_node("r");
+    m.add<rigid_body>("body", rigid_body::example(), x[0], x[1], x[2], r);
+    m.add<body_torque>("torque", body_torque::example(), r);
+    m.add<body_force>("force", body_force::example(), x[0], x[1], x[2], r);
+    m.add<initial_rotation>("start", initial_rotation::example(), r);
+    simulation sim(m);
+    sim.run({.end = 1e-3, .smax = 1e-3});
+    sim.run({.end = 2e-3, .smax = 1e-3});
+    run_statistics many{};
+    const allocation_counts counts = count_allocations([&] { many = sim.run({.end = 20e-3, .smax = 1e-3}); });
+    check_none(counts);
+    CHECK(many.steps == 18);
+    CHECK(std::isfinite(sim.u(r.q4)));
   }
 }

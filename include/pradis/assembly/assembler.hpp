@@ -20,6 +20,7 @@
 #include "pradis/core/element.hpp"
 #include "pradis/linalg/sparsity.hpp"
 #include "pradis/model/model.hpp"
+#include "pradis/spatial/quaternion.hpp"
 
 namespace pradis {
 
@@ -51,6 +52,7 @@ struct call_info {
   int niter = 0;
   bool want_jacobian = true;
   diagnostics* log = nullptr;
+  double dabsi = 0.1;  ///< DABSI of the run: sets Mu of the rotational nodes' norm equation (spatial::norm_viscosity)
 };
 
 template <class Model>
@@ -91,7 +93,23 @@ class assembler<model<Es...>> {
             if (er >= 0 && ec >= 0) entries.emplace_back(er, ec);
           }
     });
+    // Rotational nodes: the 4 x 4 block of q1..q4 (the norm equation fills the q4 row).
+    for (const auto& node : m.rotation_nodes())
+      for (int r : node.dofs)
+        for (int c : node.dofs) {
+          const int er = eq_of_dof_[static_cast<std::size_t>(r)], ec = eq_of_dof_[static_cast<std::size_t>(c)];
+          if (er >= 0 && ec >= 0) entries.emplace_back(er, ec);
+        }
     pattern_ = linalg::sparsity_pattern::from_entries(ne, entries);
+    node_slots_.assign(m.rotation_nodes().size() * 4, -1);
+    for (std::size_t i = 0; i < m.rotation_nodes().size(); ++i) {
+      const auto& d = m.rotation_nodes()[i].dofs;
+      const int er = eq_of_dof_[static_cast<std::size_t>(d[3])];
+      for (std::size_t c = 0; c < 4; ++c) {
+        const int ec = eq_of_dof_[static_cast<std::size_t>(d[c])];
+        if (er >= 0 && ec >= 0) node_slots_[i * 4 + c] = pattern_.find(er, ec);
+      }
+    }
     // Scatter maps: slot of every local entry (r, c), or -1 where row or column has no equation.
     std::apply(
         [&](auto&... maps) {
@@ -140,6 +158,7 @@ class assembler<model<Es...>> {
     ctx.niter = info.niter;
     std::size_t ti = 0;
     (evaluate_type<Es>(m, s, c, info, ctx, std::get<index_of<Es, Es...>()>(maps_), ti++), ...);
+    evaluate_rotation_nodes(m, s, c, info, ctx);
     recommended_step_ = ctx.recommended_step;
   }
 
@@ -245,6 +264,49 @@ class assembler<model<Es...>> {
     }
   }
 
+  /// The norm equation of every rotational node, once per node: the flow
+  /// Mu d(Lq)/dt = Mu (q . q') / Lq on the hidden q4, with dF/dq' = Mu q / Lq and
+  /// dF/dq = Mu (q' / Lq - (q . q') q / Lq^3). Lq near zero or far from 1 is code 75,
+  /// reported in the name of the node's first element.
+  void evaluate_rotation_nodes(const model_type& m, const global_state& s, const jacobian_coefficients& c,
+                               const call_info& info, element_context& ctx) {
+    const auto& nodes = m.rotation_nodes();
+    const double mu = spatial::norm_viscosity(info.dabsi);
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const auto& node = nodes[i];
+      Eigen::Vector4d q, p;
+      for (int k = 0; k < 4; ++k) {
+        q(k) = s.u(node.dofs[static_cast<std::size_t>(k)]);
+        p(k) = s.v(node.dofs[static_cast<std::size_t>(k)]);
+      }
+      const double lq = q.norm();
+      if (!(lq > spatial::lq_near_zero) || !std::isfinite(lq) || !(std::abs(lq - 1.0) <= spatial::lq_far_from_one)) {
+        ctx.set_identity(node.owner_type.empty() ? std::string_view("ROTATION NODE") : std::string_view(node.owner_type),
+                         node.owner_instance.empty() ? std::string_view(node.name) : std::string_view(node.owner_instance));
+        if (!(lq > spatial::lq_near_zero) || !std::isfinite(lq))
+          ctx.singular("rotational node '" + node.name + "': Lq near zero (the quaternion norm |q| = " + to_text(lq) +
+                       "; it starts at 1 and must stay there): the orientation is undefined");
+        ctx.singular("rotational node '" + node.name + "': Lq far from 1 (the quaternion norm |q| = " + to_text(lq) +
+                     " has drifted from its start value 1 by more than " + to_text(spatial::lq_far_from_one) +
+                     "; check the initial quaternion and the step)");
+      }
+      const double g = q.dot(p);
+      const double f = mu * g / lq;
+      const auto d4 = static_cast<Eigen::Index>(node.dofs[3]);
+      residual_(d4) += f;
+      abs_sum_(d4) += std::abs(f);
+      if (!info.want_jacobian) continue;
+      const int* slot = node_slots_.data() + i * 4;
+      for (int k = 0; k < 4; ++k) {
+        if (slot[k] < 0) continue;
+        const double dk = mu * (p(k) / lq - g * q(k) / (lq * lq * lq));
+        const double dc = mu * q(k) / lq;
+        values_[static_cast<std::size_t>(slot[k])] += c.cu * dk + c.cv * dc;
+      }
+    }
+  }
+
+  std::vector<int> node_slots_;  // per rotational node: slots of (q4 row, columns q1..q4), -1 if absent
   std::vector<int> eq_of_dof_, dof_of_eq_;
   linalg::sparsity_pattern pattern_;
   std::tuple<scatter_map<Es>...> maps_;

@@ -6,7 +6,9 @@
 /// work and state vectors, error reporting, the recommended step STEPMD).
 
 #include <Eigen/Core>
+#include <array>
 #include <concepts>
+#include <cstddef>
 #include <limits>
 #include <span>
 #include <string>
@@ -50,6 +52,50 @@ struct absent_block {
   static constexpr bool present = false;
 };
 
+/// One spatial rotational node of an element: the local index of its q1 among the
+/// external DOFs (q2 and q3 follow it) and the local index of its hidden q4 among
+/// the internal DOFs (EXT <= q4 < EXT + ENT). An element with rotational nodes
+/// declares `static constexpr std::array<pradis::rotation_slot, K> rotation_nodes`;
+/// the model then connects the internal slot q4 to the hidden fourth potential of
+/// the node whose q1, q2, q3 the element is connected to, shared by every element
+/// on that node, instead of giving the element a private internal DOF.
+struct rotation_slot {
+  int q1 = 0;  ///< local index of q1 (external); q2 = q1 + 1, q3 = q1 + 2
+  int q4 = 0;  ///< local index of the hidden q4 (internal)
+  friend constexpr bool operator==(const rotation_slot&, const rotation_slot&) = default;
+};
+
+/// Whether E declares spatial rotational nodes (`E::rotation_nodes`).
+template <class E>
+concept HasRotationNodes = requires {
+  { E::rotation_nodes.size() } -> std::convertible_to<std::size_t>;
+  { E::rotation_nodes[0] } -> std::convertible_to<rotation_slot>;
+};
+
+/// The rotational nodes of E (an empty array if it declares none).
+template <class E>
+constexpr auto rotation_slots_of() {
+  if constexpr (HasRotationNodes<E>)
+    return E::rotation_nodes;
+  else
+    return std::array<rotation_slot, 0>{};
+}
+
+/// Checks the rotational-node declaration of an element with EXT = ext and ENT = ent;
+/// nullptr when valid, otherwise one sentence.
+template <std::size_t K>
+constexpr const char* rotation_slots_problem(const std::array<rotation_slot, K>& r, int ext, int ent) noexcept {
+  for (std::size_t i = 0; i < K; ++i) {
+    if (r[i].q1 < 0 || r[i].q1 + 2 >= ext) return "a rotational node's q1..q3 must be external DOFs (q1 + 2 < EXT)";
+    if (r[i].q4 < ext || r[i].q4 >= ext + ent) return "a rotational node's q4 must be an internal DOF (EXT <= q4 < EXT + ENT)";
+    for (std::size_t j = 0; j < i; ++j) {
+      if (r[i].q4 == r[j].q4) return "two rotational nodes share the same q4 slot";
+      if (r[i].q1 < r[j].q1 + 3 && r[j].q1 < r[i].q1 + 3) return "two rotational nodes overlap in their q1..q3 slots";
+    }
+  }
+  return nullptr;
+}
+
 /// Reads the passport and derived compile-time facts of an element type.
 /// Specialise it to adapt a third-party type whose passport lives elsewhere.
 template <class E>
@@ -70,6 +116,10 @@ struct element_traits {
   using k_block = std::conditional_t<has_k, matrix, absent_block>;
   using c_block = std::conditional_t<has_c, matrix, absent_block>;
   using m_block = std::conditional_t<has_m, matrix, absent_block>;
+  /// The element's spatial rotational nodes (see rotation_slot); empty for most elements.
+  static constexpr auto rotation_nodes = rotation_slots_of<E>();
+  /// Number of spatial rotational nodes.
+  static constexpr int rotations = static_cast<int>(rotation_nodes.size());
 };
 
 /// Potentials an element sees at one evaluation: displacement u, velocity v and
@@ -293,6 +343,9 @@ consteval bool check_element() {
     static_assert(p.ign == 0 || p.ign == 2 || p.ign == 3 || p.ign == 23, "pradis: passport IGN must be 0, 2, 3 or 23");
     static_assert(!(p.adr == 2 && (p.ign == 2 || p.ign == 23)), "pradis: passport ADR=2 allows IGN=0 or IGN=3 only");
     static_assert(!(p.adr == 3 && p.ign != 0), "pradis: passport ADR=3 allows IGN=0 only");
+    if constexpr (HasRotationNodes<E>)
+      static_assert(rotation_slots_problem(E::rotation_nodes, p.ext, p.ent) == nullptr,
+                    "pradis: invalid rotation_nodes: q1..q3 must be external DOFs, q4 an internal DOF, no overlaps");
   }
   static_assert(HasHelp<E>, "pradis: an element type needs `static constexpr pradis::element_help help = {...};`");
   static_assert(requires { typename E::parameters; },

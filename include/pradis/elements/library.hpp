@@ -15,6 +15,9 @@
 #include "pradis/elements/planar/eccentric_mass.hpp"
 #include "pradis/elements/planar/planar_inertia.hpp"
 #include "pradis/elements/planar/planar_link.hpp"
+#include "pradis/elements/spatial/initial_rotation.hpp"
+#include "pradis/elements/spatial/loads.hpp"
+#include "pradis/elements/spatial/rigid_body.hpp"
 #include "pradis/model/model.hpp"
 
 namespace pradis::elements {
@@ -24,8 +27,10 @@ using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, cons
                                   displacement_source, velocity_source, initial_displacement, initial_velocity>;
 /// Planar mechanics.
 using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass>;
+/// Spatial mechanics (rotational nodes with the hidden fourth potential, docs/rotations.md).
+using spatial_elements = type_list<rigid_body, spatial_force, spatial_torque, body_force, body_torque, initial_rotation>;
 /// Every element type of the built-in library.
-using library_elements = concat_t<mech1d_elements, planar_elements>;
+using library_elements = concat_t<mech1d_elements, planar_elements, spatial_elements>;
 
 }  // namespace pradis::elements
 

@@ -416,6 +416,9 @@ class simulation<model<Es...>, Scheme, Solver> {
   void zero_step() {
     const int nd = m_.dof_count();
     s_.resize(nd);
+    // The hidden q4 of every rotational node starts at 1 (identity orientation);
+    // initial-rotation elements (ROT0) may set it otherwise below.
+    for (const auto& node : m_.rotation_nodes()) s_.u(node.dofs[3]) = 1.0;
     std::vector<std::string> driver = detect_sources();
     new_integration();
     // Initial conditions (zero step), with conflict detection (code 90).
@@ -517,6 +520,8 @@ class simulation<model<Es...>, Scheme, Solver> {
       g.v.head(old) = s_.v;
       g.a.head(old) = s_.a;
       g.p.head(old) = s_.p;
+      for (const auto& node : m_.rotation_nodes())
+        if (node.dofs[3] >= old) g.u(node.dofs[3]) = 1.0;  // a new rotational node starts at the identity
       s_ = g;
     }
     asm_.build(m_, prescribed_);
@@ -586,6 +591,27 @@ class simulation<model<Es...>, Scheme, Solver> {
         if (q >= 0 && mvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(i)] = 1;
         else if (q >= 0 && cvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(i)] = 2;
       }
+      // Rotational nodes: the hidden q4's unknown is its acceleration, from the norm
+      // equation differentiated once more, d2(Lq)/dt2 = 0, i.e.
+      // (q . q'' + |q'|^2 - (q . q')^2 / Lq^2) / Lq = 0: without it q4'' would start
+      // inconsistent and the trapezoidal rule would carry the error on as an
+      // undamped alternation of q'' (which enters the moments through E(q) q'').
+      // q1..q3 of a node are inertial when the node's inertia block has an entry in
+      // their row (their own diagonal E(q)-entry may vanish, e.g. at 180 degrees).
+      for (const auto& node : m_.rotation_nodes()) {
+        const int e4 = asm_.equation_of(node.dofs[3]);
+        if (e4 < 0) continue;
+        kind[static_cast<std::size_t>(e4)] = 1;
+        for (int r = 0; r < 3; ++r) {
+          const int er = asm_.equation_of(node.dofs[static_cast<std::size_t>(r)]);
+          if (er < 0) continue;
+          for (int c = 0; c < 4; ++c) {
+            const int ec = asm_.equation_of(node.dofs[static_cast<std::size_t>(c)]);
+            const int q = ec >= 0 ? pat.find(er, ec) : -1;
+            if (q >= 0 && mvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(er)] = 1;
+          }
+        }
+      }
       std::vector<double> j(mvals.size(), 0.0);
       for (int r = 0; r < ne; ++r)
         for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
@@ -594,6 +620,25 @@ class simulation<model<Es...>, Scheme, Solver> {
           const char k = kind[static_cast<std::size_t>(c)];
           j[sq] = k == 1 ? mvals[sq] : (k == 2 ? cvals[sq] : (r == c ? 1.0 : 0.0));
         }
+      for (const auto& node : m_.rotation_nodes()) {
+        const int e4 = asm_.equation_of(node.dofs[3]);
+        if (e4 < 0) continue;
+        Eigen::Vector4d q, qd, qdd;
+        for (int k = 0; k < 4; ++k) {
+          const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
+          q(k) = s_.u(d);
+          qd(k) = s_.v(d);
+          qdd(k) = s_.a(d);
+        }
+        const double lq = q.norm(), g = q.dot(qd);
+        for (int qq = pat.row_ptr[static_cast<std::size_t>(e4)]; qq < pat.row_ptr[static_cast<std::size_t>(e4) + 1]; ++qq)
+          j[static_cast<std::size_t>(qq)] = 0.0;
+        for (int k = 0; k < 4; ++k) {
+          const int ec = asm_.equation_of(node.dofs[static_cast<std::size_t>(k)]);
+          if (ec >= 0) j[static_cast<std::size_t>(pat.find(e4, ec))] = q(k) / lq;
+        }
+        rhs_[static_cast<std::size_t>(e4)] = -(q.dot(qdd) + qd.squaredNorm() - g * g / (lq * lq)) / lq;
+      }
       try {
         solver_.factorize(j);
         ++stats_.factorizations;
@@ -621,7 +666,7 @@ class simulation<model<Es...>, Scheme, Solver> {
   /// Evaluates the model. During step k (1-based) elements see NSTEP = k; at
   /// the zero step and between steps they see the number of accepted steps.
   void evaluate(const jacobian_coefficients& c, double h, bool jac, int niter = 0, bool in_step = false) {
-    call_info info{t_, h, stats_.steps + (in_step ? 1 : 0), niter, jac, &log_};
+    call_info info{t_, h, stats_.steps + (in_step ? 1 : 0), niter, jac, &log_, opt_.newton.dabsi};
     ++stats_.evaluations;
     asm_.evaluate(m_, s_, c, info);
   }

@@ -14,6 +14,8 @@
 #include <string>
 #include <string_view>
 #include <tuple>
+#include <type_traits>
+#include <utility>
 #include <unordered_map>
 #include <vector>
 
@@ -27,6 +29,27 @@ namespace pradis {
 struct dof {
   int index = 0;
   friend constexpr bool operator==(dof, dof) = default;
+};
+
+/// A spatial rotational node (PRADIS's four rotational potentials of a point in
+/// spatial motion): the non-normalised quaternion q = (q1, q2, q3, q4). q1, q2, q3
+/// are external DOFs: the user connects, fixes (connects to the ground) or loads
+/// only these, and their flows are the moments about the global X, Y, Z axes. q4 is
+/// the hidden fourth potential: an internal DOF the user never names, initialised
+/// to 1 and shared by every element connected to the node; the model assembles its
+/// norm equation Mu d|q|/dt once per node (see docs/rotations.md).
+struct rotation_node {
+  dof q1{}, q2{}, q3{};  ///< external potentials (a component connected to the ground is fixed)
+  dof q4{};              ///< the hidden fourth potential
+  int index = -1;        ///< index among the model's rotational nodes
+};
+
+/// What the model keeps about a rotational node.
+struct rotation_node_record {
+  std::string name;                 ///< node name (used in messages)
+  std::array<int, 4> dofs{};        ///< global indices of q1, q2, q3 (0 = fixed to the ground) and of the hidden q4
+  std::string owner_type;           ///< catalog name of the first element connected through a rotational slot
+  std::string owner_instance;       ///< instance name of that element (errors of the node name it)
 };
 
 /// Handle to an element instance of type E in a model.
@@ -100,15 +123,79 @@ class model {
   /// Name of a DOF.
   const std::string& dof_name(int i) const { return dof_names_.at(static_cast<std::size_t>(i)); }
 
+  /// Adds a spatial rotational node with three new external DOFs `<name>.q1`,
+  /// `<name>.q2`, `<name>.q3` and the hidden `<name>.q4` (initialised to 1 at the zero step).
+  rotation_node add_rotation_node(std::string name = {}) {
+    if (name.empty()) name = "rotation node " + std::to_string(rotation_nodes_.size() + 1);
+    const dof a = add_dof(name + ".q1"), b = add_dof(name + ".q2"), c = add_dof(name + ".q3");
+    return add_rotation_node(std::move(name), a, b, c);
+  }
+  /// Declares the existing DOFs q1, q2, q3 a spatial rotational node and adds its hidden
+  /// q4. A component given as the ground is fixed (PRADIS: connecting an angular DOF to
+  /// node 0). A DOF that already belongs to a rotational node is code 110.
+  rotation_node add_rotation_node(std::string name, dof q1, dof q2, dof q3) {
+    const std::array<int, 3> t{q1.index, q2.index, q3.index};
+    check_rotation_triple(t, "", name);
+    if (name.empty()) name = "rotation node " + std::to_string(rotation_nodes_.size() + 1);
+    for (int k = 0; k < 3; ++k)
+      if (t[static_cast<std::size_t>(k)] != 0 && rotation_role_.count(t[static_cast<std::size_t>(k)]))
+        throw error(error_code::invalid_model,
+                    "DOF '" + dof_name(t[static_cast<std::size_t>(k)]) + "' already belongs to rotational node '" +
+                        rotation_nodes_[static_cast<std::size_t>(rotation_role_.at(t[static_cast<std::size_t>(k)]).first)]
+                            .name +
+                        "'",
+                    {}, name);
+    if (t == std::array<int, 3>{0, 0, 0} && ground_rotation_node_ >= 0)
+      throw error(error_code::invalid_model, "the fully fixed rotational node (all three components on the ground) "
+                                             "already exists", {}, name);
+    return rotation_node_handle(create_rotation_node(std::move(name), t));
+  }
+  /// The rotational nodes of the model (explicit ones and those created by elements).
+  const std::vector<rotation_node_record>& rotation_nodes() const noexcept { return rotation_nodes_; }
+  /// Handle of rotational node i.
+  rotation_node rotation_node_handle(int i) const {
+    const auto& r = rotation_nodes_.at(static_cast<std::size_t>(i));
+    return rotation_node{dof{r.dofs[0]}, dof{r.dofs[1]}, dof{r.dofs[2]}, dof{r.dofs[3]}, i};
+  }
+  /// The rotational node whose external DOF q1, q2 or q3 is `d` (not the ground), if any.
+  std::optional<rotation_node> find_rotation_node(dof d) const {
+    auto it = rotation_role_.find(d.index);
+    if (d.index == 0 || it == rotation_role_.end()) return std::nullopt;
+    return rotation_node_handle(it->second.first);
+  }
+  /// The rotational node of slot k (0-based, in E::rotation_nodes order) of an instance.
+  template <class E>
+  rotation_node rotation_node_of(element_ref<E> r, int k = 0) const {
+    const auto slot = element_traits<E>::rotation_nodes.at(static_cast<std::size_t>(k));
+    const int q4 = instance(r).dofs[static_cast<std::size_t>(slot.q4)];
+    for (std::size_t i = 0; i < rotation_nodes_.size(); ++i)
+      if (rotation_nodes_[i].dofs[3] == q4) return rotation_node_handle(static_cast<int>(i));
+    throw error(error_code::invalid_model, "no rotational node on this slot");
+  }
+
   /// Places an element of type E with typed parameters, connected to exactly
-  /// EXT DOFs (another count does not compile). Internal DOFs are added automatically.
+  /// EXT DOFs (another count does not compile). Each argument is a `dof` or a
+  /// `rotation_node`, which stands for its three external DOFs q1, q2, q3.
+  /// Internal DOFs are added automatically; an internal slot that is the hidden q4
+  /// of a rotational node (E::rotation_nodes) is connected to the node's shared q4.
   template <class E, class... D>
-    requires(std::same_as<D, dof> && ...)
+    requires((std::same_as<D, dof> || std::same_as<D, rotation_node>) && ...)
   element_ref<E> add(std::string name, typename E::parameters p, D... d) {
     static_assert(contains_v<E, Es...>, "pradis: this element type is not listed in the model's element types");
-    static_assert(sizeof...(D) == element_traits<E>::ext,
+    static_assert(((std::same_as<D, dof> ? 1 : 3) + ... + 0) == element_traits<E>::ext,
                   "pradis: an element must be connected to exactly EXT DOFs (its passport's EXT)");
-    const std::array<dof, sizeof...(D)> ds{d...};
+    std::array<dof, element_traits<E>::ext> ds{};
+    std::size_t at = 0;
+    const auto put = [&](const auto& x) {
+      if constexpr (std::same_as<std::remove_cvref_t<decltype(x)>, dof>) {
+        ds[at++] = x;
+      } else {
+        ds[at++] = x.q1;
+        ds[at++] = x.q2;
+        ds[at++] = x.q3;
+      }
+    };
+    (put(d), ...);
     E e(p);
     int npar = E::passport.par;
     if constexpr (requires { e.parameter_count(); }) npar = e.parameter_count();
@@ -261,8 +348,18 @@ class model {
                     std::string(p.name), name);
       in.dofs[k] = d[k].index;
     }
-    for (int k = 0; k < p.ent; ++k)
-      in.dofs[static_cast<std::size_t>(p.ext + k)] = add_dof(name + ".internal" + std::to_string(k + 1)).index;
+    constexpr auto slots = element_traits<E>::rotation_nodes;
+    for (int k = 0; k < p.ent; ++k) {
+      int hidden = -1;
+      for (const rotation_slot& sl : slots)
+        if (sl.q4 == p.ext + k) {
+          const auto q1 = static_cast<std::size_t>(sl.q1);
+          const std::array<int, 3> t{in.dofs[q1], in.dofs[q1 + 1], in.dofs[q1 + 2]};
+          hidden = rotation_nodes_[static_cast<std::size_t>(resolve_rotation_node(t, p.name, name))].dofs[3];
+        }
+      in.dofs[static_cast<std::size_t>(p.ext + k)] =
+          hidden >= 0 ? hidden : add_dof(name + ".internal" + std::to_string(k + 1)).index;
+    }
     in.work_offset = work_.size();
     in.work_size = static_cast<std::size_t>(p.work_size(npar));
     work_.resize(work_.size() + in.work_size, 0.0);
@@ -286,6 +383,66 @@ class model {
     return place_impl<E, std::dynamic_extent>(std::move(name), std::move(e), d, npar);
   }
 
+  /// Refuses a triple with a repeated non-ground DOF (code 110).
+  void check_rotation_triple(const std::array<int, 3>& t, std::string_view type, const std::string& inst) const {
+    for (int i = 0; i < 3; ++i) {
+      const int d = t[static_cast<std::size_t>(i)];
+      if (d < 0 || d >= dof_count())
+        throw error(error_code::invalid_model, "DOF " + std::to_string(d) + " does not exist in this model",
+                    std::string(type), inst);
+      for (int j = 0; j < i; ++j)
+        if (d != 0 && d == t[static_cast<std::size_t>(j)])
+          throw error(error_code::invalid_model,
+                      "DOF '" + dof_name(d) + "' is given twice among the q1, q2, q3 of a rotational node",
+                      std::string(type), inst);
+    }
+  }
+  int create_rotation_node(std::string name, const std::array<int, 3>& t) {
+    const int idx = static_cast<int>(rotation_nodes_.size());
+    const int q4 = add_dof(name + ".q4").index;
+    rotation_nodes_.push_back(rotation_node_record{std::move(name), {t[0], t[1], t[2], q4}, {}, {}});
+    for (int k = 0; k < 3; ++k)
+      if (t[static_cast<std::size_t>(k)] != 0) rotation_role_[t[static_cast<std::size_t>(k)]] = {idx, k};
+    if (t == std::array<int, 3>{0, 0, 0}) ground_rotation_node_ = idx;
+    return idx;
+  }
+  /// The rotational node whose q1, q2, q3 are the DOFs t: the existing one, or a new
+  /// node (with a new hidden q4) if none of them belongs to one. A DOF that belongs
+  /// to another node, or to this node in another role, is code 110.
+  int resolve_rotation_node(const std::array<int, 3>& t, std::string_view type, const std::string& inst) {
+    check_rotation_triple(t, type, inst);
+    int found = -1;
+    for (int k = 0; k < 3; ++k) {
+      const int d = t[static_cast<std::size_t>(k)];
+      if (d == 0) continue;
+      auto it = rotation_role_.find(d);
+      if (it == rotation_role_.end()) continue;
+      const auto& rec = rotation_nodes_[static_cast<std::size_t>(it->second.first)];
+      if (found >= 0 && found != it->second.first)
+        throw error(error_code::invalid_model, "the DOFs connected as q1, q2, q3 belong to different rotational nodes",
+                    std::string(type), inst);
+      if (it->second.second != k || rec.dofs[0] != t[0] || rec.dofs[1] != t[1] || rec.dofs[2] != t[2])
+        throw error(error_code::invalid_model,
+                    "DOF '" + dof_name(d) + "' is q" + std::to_string(it->second.second + 1) + " of rotational node '" +
+                        rec.name + "' (q1, q2, q3 = DOFs " + std::to_string(rec.dofs[0]) + ", " +
+                        std::to_string(rec.dofs[1]) + ", " + std::to_string(rec.dofs[2]) +
+                        "); an element must connect all three, in this order",
+                    std::string(type), inst);
+      found = it->second.first;
+    }
+    if (found < 0 && t == std::array<int, 3>{0, 0, 0}) found = ground_rotation_node_;
+    if (found < 0) found = create_rotation_node("rotation node " + std::to_string(rotation_nodes_.size() + 1), t);
+    auto& rec = rotation_nodes_[static_cast<std::size_t>(found)];
+    if (rec.owner_instance.empty()) {
+      rec.owner_type = std::string(type);
+      rec.owner_instance = inst;
+    }
+    return found;
+  }
+
+  std::vector<rotation_node_record> rotation_nodes_;
+  std::unordered_map<int, std::pair<int, int>> rotation_role_;  // external DOF -> (node, component)
+  int ground_rotation_node_ = -1;
   std::vector<std::string> dof_names_;
   std::tuple<std::vector<element_instance<Es>>...> instances_;
   std::unordered_map<std::string, instance_location> by_name_;

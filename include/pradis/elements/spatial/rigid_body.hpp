@@ -1,0 +1,172 @@
+#pragma once
+/// \file
+/// BODY3: rigid body in spatial motion on a translational point (x, y, z) and a
+/// spatial rotational node (q1, q2, q3 and the hidden q4).
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <array>
+#include <cmath>
+#include <span>
+#include <string>
+
+#include "pradis/core/element.hpp"
+#include "pradis/spatial/quaternion.hpp"
+
+namespace pradis::elements {
+
+/// BODY3: a rigid body of mass m and inertia tensor J (about the centre of mass, in
+/// the body frame) whose reference point P has the displacements x, y, z and whose
+/// orientation is the rotational node q = (q1, q2, q3, q4); the centre of mass lies
+/// at c (body frame) from P. With R = R(q), rho = R c, A = R J R^T,
+/// omega = (2/s) E(q) q', alpha = d omega/dt (spatial/quaternion.hpp), the flows are
+/// the inertial force and the inertial moment about P in global axes:
+///
+///     F = m a_c,   a_c = x'' + alpha x rho + omega x (omega x rho)
+///     N = A alpha + omega x (A omega) + rho x F          (flows on q1, q2, q3)
+///
+/// and zero on q4 (the node's norm equation is assembled by the model). N is the
+/// rate of the angular momentum about P: on q1..q3 the moment equations, with the
+/// node's norm equation, make a regular Newton matrix (E(q) q = 0 and the norm row
+/// is q^T). Full Jacobian (ADR=1, IGN=0), derived in docs/rotations.md.
+struct rigid_body {
+  static constexpr pradis::passport passport{.name = "BODY3", .ext = 6, .ent = 1, .par = 10, .wrk = 7, .adr = 1, .ign = 0};
+  /// q1..q3 are local DOFs 4..6 (0-based 3..5), the hidden q4 the internal DOF 7 (0-based 6).
+  static constexpr std::array<rotation_slot, 1> rotation_nodes{{{3, 6}}};
+  static constexpr element_help help{
+      .title = "rigid body in spatial motion",
+      .name = "Rigid body with mass and inertia tensor on a translational point and a spatial rotational node",
+      .field = "mechanics, spatial motion",
+      .dofs = "1 - translation of the reference point P along X [m]\n"
+              "2 - translation of P along Y [m]\n"
+              "3 - translation of P along Z [m]\n"
+              "4 - rotation potential q1 of the spatial rotational node (flow: moment about X) [-]\n"
+              "5 - rotation potential q2 (flow: moment about Y) [-]\n"
+              "6 - rotation potential q3 (flow: moment about Z) [-]",
+      .parameters = "1 - mass m [kg] (>= 0)\n"
+                    "2 - moment of inertia Jxx about the centre of mass, body frame [kg m^2]\n"
+                    "3 - Jyy [kg m^2]\n"
+                    "4 - Jzz [kg m^2]\n"
+                    "5 - tensor entry Jxy [kg m^2] (J = [Jxx Jxy Jxz; Jxy Jyy Jyz; Jxz Jyz Jzz], positive definite)\n"
+                    "6 - Jxz [kg m^2]\n"
+                    "7 - Jyz [kg m^2]\n"
+                    "8 - x of the centre of mass from P, body frame [m]\n"
+                    "9 - y of the centre of mass from P, body frame [m]\n"
+                    "10 - z of the centre of mass from P, body frame [m]",
+      .work = "1 - kinetic energy T [J]\n"
+              "2 - angular momentum about the centre of mass, X component (global) [N m s]\n"
+              "3 - angular momentum, Y component [N m s]\n"
+              "4 - angular momentum, Z component [N m s]\n"
+              "5 - angular velocity about X (global) [rad/s]\n"
+              "6 - angular velocity about Y [rad/s]\n"
+              "7 - angular velocity about Z [rad/s]",
+      .special = "code 100 if m < 0, the inertia tensor is not positive definite (or not finite), or the offset of "
+                 "the centre of mass is not finite; code 75 if the quaternion norm Lq comes near zero. The hidden "
+                 "fourth rotation potential q4 is shared with every element on the same rotational node; q', q'' "
+                 "are not angular velocity and acceleration (docs/rotations.md)"};
+
+  /// Typed parameters, in PAR order.
+  struct parameters {
+    double m = 0;                             ///< mass [kg]
+    double jxx = 0, jyy = 0, jzz = 0;         ///< moments of inertia about the centre of mass (body frame) [kg m^2]
+    double jxy = 0, jxz = 0, jyz = 0;         ///< off-diagonal tensor entries [kg m^2]
+    double cx = 0, cy = 0, cz = 0;            ///< centre of mass from the reference point (body frame) [m]
+  };
+  parameters p;
+
+  explicit rigid_body(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test): an
+  /// asymmetric body with products of inertia and an offset centre of mass.
+  static parameters example() { return {2.0, 0.5, 0.4, 0.3, 0.05, -0.03, 0.02, 0.1, -0.2, 0.15}; }
+  static rigid_body from_parameters(std::span<const double> v) {
+    return rigid_body({v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9]});
+  }
+
+  /// The inertia tensor about the centre of mass in the body frame.
+  spatial::mat3 inertia() const {
+    spatial::mat3 j;
+    j << p.jxx, p.jxy, p.jxz, p.jxy, p.jyy, p.jyz, p.jxz, p.jyz, p.jzz;
+    return j;
+  }
+  /// The centre of mass from the reference point in the body frame.
+  spatial::vec3 offset() const { return {p.cx, p.cy, p.cz}; }
+
+  /// NEWINT: m >= 0, J symmetric positive definite, finite offset (code 100).
+  void new_integration(element_context& ctx) const {
+    if (!(p.m >= 0) || !std::isfinite(p.m)) ctx.invalid_parameter("mass m = " + to_text(p.m) + " must be finite and >= 0");
+    const spatial::mat3 j = inertia();
+    if (!j.allFinite()) ctx.invalid_parameter("the inertia tensor must be finite");
+    const Eigen::SelfAdjointEigenSolver<spatial::mat3> es(j, Eigen::EigenvaluesOnly);
+    const double lmin = es.eigenvalues()(0), lmax = es.eigenvalues()(2);
+    if (!(lmin > 1e-12 * lmax) || !(lmax > 0))
+      ctx.invalid_parameter("the inertia tensor is not positive definite (smallest principal moment " + to_text(lmin) +
+                            " kg m^2)");
+    if (!offset().allFinite()) ctx.invalid_parameter("the offset of the centre of mass must be finite");
+  }
+
+  void evaluate(const local_input<rigid_body>& in, local_output<rigid_body>& out, element_context& ctx) const {
+    using namespace spatial;
+    const quaternion q = in.u.segment<4>(3), qd = in.v.segment<4>(3), qdd = in.a.segment<4>(3);
+    const double s = q.squaredNorm();
+    if (!(s > lq_near_zero * lq_near_zero)) ctx.singular("Lq near zero: the quaternion norm |q| has vanished");
+    const mat3 r = rotation_matrix(q);
+    const mat34 e = e_matrix(q);
+    const double g = q.dot(qd);
+    const vec3 w = (2.0 / s) * (e * qd);                // omega
+    const vec3 alpha1 = (2.0 / s) * (e * qdd);
+    const vec3 alpha = alpha1 - (2.0 * g / s) * w;      // d omega / dt
+    const vec3 rho = r * offset();
+    const mat3 a = r * inertia() * r.transpose();
+    const vec3 h = a * w;
+    const vec3 xdd = in.a.head<3>();
+    const vec3 ac = xdd + alpha.cross(rho) + w.cross(w.cross(rho));
+    const vec3 f = p.m * ac;
+    const vec3 n = a * alpha + w.cross(h) + rho.cross(f);
+    out.f.head<3>() = f;
+    out.f.segment<3>(3) = n;
+    out.f(6) = 0.0;
+    const vec3 vc = in.v.head<3>() + w.cross(rho);
+    ctx.work[0] = 0.5 * p.m * vc.squaredNorm() + 0.5 * w.dot(h);
+    ctx.work[1] = h.x();
+    ctx.work[2] = h.y();
+    ctx.work[3] = h.z();
+    ctx.work[4] = w.x();
+    ctx.work[5] = w.y();
+    ctx.work[6] = w.z();
+    if (!out.want_jacobian) return;
+
+    // Partial derivatives of (F, N) by x'', alpha, omega and a small global rotation theta.
+    const mat3 sr = skew(rho), sw = skew(w), sa = skew(alpha);
+    const mat3 df_dalpha = -p.m * sr;
+    const mat3 dn_dalpha = a - p.m * sr * sr;
+    const mat3 df_dw = p.m * (w * rho.transpose() + w.dot(rho) * mat3::Identity() - 2.0 * rho * w.transpose());
+    const mat3 dn_dw = -skew(h) + sw * a + sr * df_dw;
+    const mat3 df_dth = p.m * (sa + sw * sw) * (-sr);
+    const mat3 dn_dth = -skew(a * alpha) + a * sa + sw * (-skew(h) + a * sw) + skew(f) * sr + sr * df_dth;
+    // Derivatives of theta, omega, alpha by q, q', q''.
+    const mat34 dth_dq = (2.0 / s) * e;
+    const mat34 dw_dq = -(2.0 / s) * (e_matrix(qd) + w * q.transpose());
+    const mat34 dw_dqd = (2.0 / s) * e;
+    const mat34 dal_dq = -(2.0 / s) * e_matrix(qdd) - (2.0 / s) * alpha1 * q.transpose() -
+                         (2.0 / s) * w * qd.transpose() - (2.0 * g / s) * dw_dq + (4.0 * g / (s * s)) * w * q.transpose();
+    const mat34 dal_dqd = -(2.0 / s) * (w * q.transpose() + g * dw_dqd);
+    const mat34 dal_dqdd = (2.0 / s) * e;
+
+    out.K.setZero();
+    out.C.setZero();
+    out.M.setZero();
+    out.K.block<3, 4>(0, 3) = df_dth * dth_dq + df_dw * dw_dq + df_dalpha * dal_dq;
+    out.K.block<3, 4>(3, 3) = dn_dth * dth_dq + dn_dw * dw_dq + dn_dalpha * dal_dq;
+    out.C.block<3, 4>(0, 3) = df_dw * dw_dqd + df_dalpha * dal_dqd;
+    out.C.block<3, 4>(3, 3) = dn_dw * dw_dqd + dn_dalpha * dal_dqd;
+    out.M.block<3, 3>(0, 0) = p.m * mat3::Identity();
+    out.M.block<3, 3>(3, 0) = p.m * sr;
+    out.M.block<3, 4>(0, 3) = df_dalpha * dal_dqdd;
+    out.M.block<3, 4>(3, 3) = dn_dalpha * dal_dqdd;
+  }
+
+  /// States the checks may use: the quaternion norm is not near zero.
+  bool admissible(const local_input<rigid_body>& in) const { return in.u.segment<4>(3).norm() > 0.2; }
+};
+
+}  // namespace pradis::elements
