@@ -430,13 +430,16 @@ double median_time(F&& f, int runs = 5) {
 }
 
 /// Measures analyze (ordering + symbolic phase), refactorisation and solve for every OPTIM
-/// level on small model-like matrices (2D grids, truss girders 2 nodes high, 2-DOF body
-/// chains) with 2..~1000 DOFs, and writes them to a CSV. The cost of a level for a run with R
+/// level on small and middle-sized model-like matrices (2D and 3D grids, truss girders 2 and
+/// 10 nodes high, 2-DOF body chains) with 2..~8000 DOFs, and writes them to a CSV. The cost of a level for a run with R
 /// refactorisations per topology is analyze_s + R * (refactor_s + solve_s); see
 /// docs/sparse.md for the crossovers that set automatic_level().
 void run_thresholds(const std::string& path) {
   std::vector<test_matrix> mats;
   for (int k = 2; k <= 32; ++k) mats.push_back(grid(k, 2));
+  for (const int k : {40, 48, 64, 90}) mats.push_back(grid(k, 2));
+  for (const int k : {4, 6, 8, 10, 13, 16}) mats.push_back(grid(k, 3));
+  for (const int nx : {25, 50, 100, 200, 400}) mats.push_back(truss(10, nx));
   for (const int nx : {1, 2, 3, 4, 5, 6, 8, 10, 12, 15, 20, 25, 30, 40, 50, 60, 80, 100, 125, 160, 200, 250})
     mats.push_back(truss(2, nx));
   for (const int nb : {1, 2, 3, 4, 5, 6, 8, 10, 15, 20, 25, 30, 40, 50, 75, 100, 150, 200, 300, 400, 500})

@@ -71,7 +71,7 @@ TEST_SUITE("lang/commands") {
     std::ostringstream os, err;
     CHECK(lang::print_reference(os, err, "newmark"));
     CHECK(os.str().find("BETA") != std::string::npos);
-    CHECK(os.str().find("Not implemented yet (an error if given): WEIGHT OPTIM") != std::string::npos);
+    CHECK(os.str().find("Not implemented yet (an error if given): WEIGHT CHECKM") != std::string::npos);
     CHECK(os.str().find("DRLTX - error control") != std::string::npos);
     CHECK(os.str().find("SAVE - write a checkpoint <stem>.t<time>.chk") != std::string::npos);
     std::ostringstream hht, galpha;

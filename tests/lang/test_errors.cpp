@@ -107,7 +107,9 @@ TEST_SUITE("lang/errors") {
   TEST_CASE("integration keys: unimplemented, unknown, duplicated, missing END, bad values") {
     expect(small_with("SMAX=1E-3", "SMAX=1E-3, WEIGHT=0.05"), "14:37",
            {"key WEIGHT of SHTERM is not implemented by pradis yet", "implemented: END OUT SMAX"});
-    expect(small_with("SMAX=1E-3", "SMAX=1E-3, OPTIM=1"), "14:37", {"key OPTIM", "not implemented"});
+    for (const char* bad : {"OPTIM=5", "OPTIM=-1", "OPTIM=2.5"})
+      expect(small_with("SMAX=1E-3", std::string("SMAX=1E-3, ") + bad), "14:43",
+             {"OPTIM must be a whole number from 0 to 4"});
     expect(small_with("SMAX=1E-3", "SMAXX=1E-3"), "14:26", {"unknown key SMAXX of SHTERM", "did you mean 'SMAX'?"});
     expect(small_with("SMAX=1E-3", "SMAX=1E-3, SMAX=2"), "14:37", {"key SMAX is given twice"});
     expect(small_with("END=0.1, ", ""), "14:16", {"SHTERM needs END="});

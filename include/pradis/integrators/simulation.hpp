@@ -216,6 +216,19 @@ class simulation<model<Es...>, Scheme, Solver> {
   const assembler<model_type>& get_assembler() const noexcept { return asm_; }
   /// The linear solver.
   const Solver& solver() const noexcept { return solver_; }
+  /// Replaces the linear solver, e.g. by one with another ordering (the OPTIM key of the
+  /// model language). If the model was already analysed, the new solver analyses its
+  /// pattern at once, so the next step factorises with the new ordering.
+  void set_solver(Solver solver) {
+    solver_ = std::move(solver);
+    if (asm_.built_for(m_)) {
+      try {
+        solver_.analyze(asm_.pattern());
+      } catch (const error& e) {
+        rethrow_singular(e);
+      }
+    }
+  }
   /// The scheme.
   const Scheme& scheme() const noexcept { return scheme_; }
   /// Starts the scheme afresh from the current state, as at the zero step: the

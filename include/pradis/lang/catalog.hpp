@@ -56,12 +56,14 @@ inline std::string_view common_run_keys() {
          "DRLTX - error control: relative tolerance of the local error (0.001)\n"
          "CONTROL - error control: no error-driven step reduction below this step (0)\n"
          "PREDICT - error control: 1 = linear prediction of the acceleration in the estimate (0)\n"
-         "SAVE - write a checkpoint <stem>.t<time>.chk at every multiple of SAVE in the stage (none)\n";
+         "SAVE - write a checkpoint <stem>.t<time>.chk at every multiple of SAVE in the stage (none)\n"
+         "OPTIM - ordering of the sparse elimination: 0 natural, 1 row count, 2 initial fill, 3 minimum degree, "
+         "4 minimum fill (by model size)\n";
 }
 
 /// Keys of PRADIS integration programs that pradis does not implement yet.
 inline const std::vector<std::string>& unimplemented_run_keys() {
-  static const std::vector<std::string> v{"WEIGHT", "OPTIM", "CHECKM", "DEBUG", "FLAG", "SCHEME"};
+  static const std::vector<std::string> v{"WEIGHT", "CHECKM", "DEBUG", "FLAG", "SCHEME"};
   return v;
 }
 

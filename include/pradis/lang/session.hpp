@@ -22,6 +22,8 @@
 
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/newmark.hpp"
+#include "pradis/linalg/ordering.hpp"
+#include "pradis/linalg/sparse_lu.hpp"
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/io/progress.hpp"
 #include "pradis/io/table.hpp"
@@ -81,7 +83,8 @@ struct stage_report {
 /// A model file turned into a model and a list of actions.
 class session {
  public:
-  using sim_type = simulation<library_model, stage_scheme>;
+  /// The simulation of a model file: OPTIM picks the ordering level of its solver per stage.
+  using sim_type = simulation<library_model, stage_scheme, linalg::sparse_lu<linalg::optim_ordering>>;
   /// Largest number of element instances a model file may create.
   static constexpr std::size_t max_elements = 200000;
   /// Largest number of fragment instances, of outputs and of values in one list.
@@ -510,6 +513,7 @@ class session {
     alpha_parameters scheme;  ///< the program's scheme, validated
     double save = 0;          ///< SAVE: checkpoint interval (0: none)
     location save_loc;        ///< where SAVE is
+    int optim = -1;           ///< OPTIM: ordering level 0..4, or -1 to choose by size
   };
 
   /// The program that owns a scheme key (BETA, GAMMA, ALPHA, RHOINF), or "" for a common key.
@@ -536,7 +540,7 @@ class session {
     static const std::vector<std::string> known{"END",   "OUT",   "SMAX",  "SMIN",    "IGNORE",  "DABSU",
                                                 "DRLTU", "DABSI", "DRLTI", "ITR",     "SECOND",  "BETA",
                                                 "GAMMA", "ALPHA", "RHOINF", "DABSX",  "DRLTX",   "CONTROL",
-                                                "PREDICT", "SAVE"};
+                                                "PREDICT", "SAVE",  "OPTIM"};
     for (const auto& g : c.args)
       for (const auto& it : g) {
         if (it.what != ast::item::kind::keyed)
@@ -552,7 +556,7 @@ class session {
             if (owner_of_key(q) == c.program) own += std::string(" ") + q;
           fail(it.loc, "key " + k + " of " + c.program +
                            " is not implemented by pradis yet (implemented: END OUT SMAX SMIN IGNORE DABSU DRLTU DABSI "
-                           "DRLTI ITR SECOND DABSX DRLTX CONTROL PREDICT SAVE" +
+                           "DRLTI ITR SECOND DABSX DRLTX CONTROL PREDICT SAVE OPTIM" +
                            own + ")");
         }
         const std::string owner = owner_of_key(k);
@@ -600,7 +604,9 @@ class session {
           if (!(s.save > 0) || !std::isfinite(s.save))
             fail(it.loc, "SAVE = " + num(s.save) +
                              " must be a number > 0 (the interval of simulated time between checkpoints)");
-        } else if (k == "BETA")
+        } else if (k == "OPTIM")
+          s.optim = whole(v, "OPTIM", linalg::optim_min_level, linalg::optim_max_level);
+        else if (k == "BETA")
           np.beta = scalar(v, "BETA");
         else if (k == "GAMMA")
           np.gamma = scalar(v, "GAMMA");
@@ -782,6 +788,8 @@ class session {
   void run_stage(const ast::call& c) {
     const stage_spec st = stage_options(c);  // again: $REPLACE may have changed $DATA values
     use_scheme(st.scheme);
+    if (sim_->solver().ordering().level != st.optim)
+      sim_->set_solver(linalg::sparse_lu<linalg::optim_ordering>(linalg::optim_ordering{st.optim}));
     const double t0 = started_ ? sim_->time() : 0.0;
     if (started_ && !(st.opt.end > t0))
       fail(c.args_loc, "END = " + num(st.opt.end) + " must be after the current time " + num(t0));

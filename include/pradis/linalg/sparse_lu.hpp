@@ -504,6 +504,8 @@ class sparse_lu {
 
   /// Size and cost figures (see lu_statistics).
   const lu_statistics& statistics() const noexcept { return stats_; }
+  /// The ordering policy (for a run-time policy such as optim_ordering, its settings).
+  const Ordering& ordering() const noexcept { return ordering_; }
   /// The pivot order of the last analyze(): perm[k] = original index of pivot k.
   const std::vector<int>& permutation() const noexcept { return perm_; }
   /// True after a successful analyze().

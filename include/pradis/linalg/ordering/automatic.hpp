@@ -35,11 +35,12 @@ inline constexpr int automatic_min_degree_max = 499;
 ///
 /// PRADIS's own defaults are 0 up to 2, 1 up to 9, 2 up to 49, 3 up to 199 and 4 above. The
 /// thresholds were re-measured for pradis's kernel (`pradis_bench_sparse --thresholds=...`,
-/// docs/data/ordering_thresholds.csv, discussed in docs/sparse.md): on 2D grids initial_fill and
-/// row_count give 1.2x to 2.6x the fill of min_degree from n = 25 on, so level 2 never wins;
-/// min_degree repays its extra analysis cost against natural within 20 refactorisations from
-/// n = 9 on; min_fill repays its (4x to 10x) longer ordering within 80 to 450 refactorisations
-/// only from about n = 500 on (below, its fill advantage is under 4% and often zero).
+/// docs/data/ordering_thresholds.csv, discussed in docs/sparse.md): row_count and initial_fill
+/// give 1.5x to 13x the fill of min_degree on meshes from n = 25 on, so level 2 never wins;
+/// min_degree repays its extra analysis against natural within about 13 refactorisations from
+/// n = 16 on; min_fill has 6-13% less fill than min_degree on truss girders from n = 500 and
+/// repays its longer ordering within 26-60 refactorisations there (on 2D meshes only from a
+/// few thousand DOFs; on 3D meshes it does not pay: choose level 3 for those).
 constexpr int automatic_level(int n) noexcept {
   if (n <= automatic_natural_max) return 0;
   if (n <= automatic_row_count_max) return 1;
