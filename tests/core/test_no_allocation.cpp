@@ -467,4 +467,27 @@ TEST_SUITE("core/allocation") {
     CHECK(many.steps == 18);
     CHECK(std::isfinite(sim.u(r.q4)));
   }
+
+  TEST_CASE("steps of a spatial model with the connecting elements SD3, RSD3, SPH3 (ends on the ground) do not allocate") {
+    model<rigid_body, spatial_spring_damper, rotational_spring_damper, spherical_joint, initial_rotation> m;
+    const auto xa = m.add_dofs(3, "xa");
+    const auto xb = m.add_dofs(3, "xb");
+    const rotation_node ra = m.add_rotation_node("ra"), rb = m.add_rotation_node("rb");
+    const dof g = m.ground();
+    m.add<rigid_body>("a", rigid_body::example(), xa[0], xa[1], xa[2], ra);
+    m.add<rigid_body>("b", rigid_body::example(), xb[0], xb[1], xb[2], rb);
+    m.add<spatial_spring_damper>("sd", spatial_spring_damper::example(), xa[0], xa[1], xa[2], ra, xb[0], xb[1], xb[2],
+                                 rb);
+    m.add<rotational_spring_damper>("rsd", rotational_spring_damper::example(), g, g, g, rb);
+    m.add<spherical_joint>("ball", spherical_joint::example(), g, g, g, g, g, g, xa[0], xa[1], xa[2], ra);
+    m.add<initial_rotation>("start", initial_rotation::example(), ra);
+    simulation sim(m);
+    sim.run({.end = 1e-3, .smax = 1e-3});
+    sim.run({.end = 2e-3, .smax = 1e-3});
+    run_statistics many{};
+    const allocation_counts counts = count_allocations([&] { many = sim.run({.end = 20e-3, .smax = 1e-3}); });
+    check_none(counts);
+    CHECK(many.steps == 18);
+    CHECK(std::isfinite(sim.u(rb.q4)));
+  }
 }

@@ -19,6 +19,10 @@
 #include "pradis/elements/spatial/loads.hpp"
 #include "pradis/elements/spatial/rigid_body.hpp"
 #include "pradis/model/model.hpp"
+// --- spatial connecting elements (SD3, RSD3, SPH3, REV3) ---
+#include "pradis/elements/spatial/joints.hpp"
+#include "pradis/elements/spatial/spring_damper.hpp"
+// --- end of spatial connecting elements ---
 
 namespace pradis::elements {
 
@@ -29,8 +33,12 @@ using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, cons
 using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass>;
 /// Spatial mechanics (rotational nodes with the hidden fourth potential, docs/rotations.md).
 using spatial_elements = type_list<rigid_body, spatial_force, spatial_torque, body_force, body_torque, initial_rotation>;
+// --- spatial connecting elements (SD3, RSD3, SPH3, REV3) ---
+/// Spatial connecting elements: spring-dampers and penalty joints between bodies (docs/rotations.md).
+using spatial_connector_elements = type_list<spatial_spring_damper, rotational_spring_damper, spherical_joint>;
+// --- end of spatial connecting elements ---
 /// Every element type of the built-in library.
-using library_elements = concat_t<mech1d_elements, planar_elements, spatial_elements>;
+using library_elements = concat_t<mech1d_elements, planar_elements, spatial_elements, spatial_connector_elements>;
 
 }  // namespace pradis::elements
 

@@ -1,0 +1,182 @@
+// The penalty joint SPH3 against exact solutions: a compound pendulum (BODY3 on a
+// spherical joint to the ground) swings with the exact period
+// 4 sqrt(I_pivot / (m g d)) K(sin(theta0 / 2)) and opens the joint by m g / k; and
+// the heavy symmetric top (Lagrange top: BODY3 spinning on SPH3 at its tip under
+// gravity, F3) against the nutation bounds and the mean precession rate from the
+// cubic f(u) of Goldstein, Classical Mechanics (3rd ed., 2002), section 5.7.
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <tuple>
+#include <vector>
+
+#include "../elements/element_test_support.hpp"
+#include "spatial_test_support.hpp"
+
+using namespace pradis;
+using namespace pradis::elements;
+using namespace pradis::spatial;
+using pradis_element_tests::check_error;
+using pradis_element_tests::error_from;
+using pradis_spatial_tests::tight_newton;
+
+namespace {
+constexpr double pi = std::numbers::pi;
+constexpr double g = 9.81;
+/// Seconds since t0.
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Result of one compound-pendulum run.
+struct pendulum_result {
+  double period = 0;    ///< mean period from downward zero crossings [s]
+  double gap_ratio = 0; ///< mean joint gap over the second half times k / (m g)
+};
+
+/// Compound pendulum: body (m, Jxx) with its centre of mass a distance d below a fixed
+/// pivot, on SPH3 with stiffness k, started at rest at angle theta0 about X.
+pendulum_result compound_pendulum(double k, double theta0, double end, double h) {
+  const double mass = 1.0, jxx = 0.02, d = 0.5;
+  model<rigid_body, spherical_joint, spatial_force, initial_rotation, initial_displacement> m;
+  const auto x = m.add_dofs(3, "x");
+  const rotation_node r = m.add_rotation_node("r");
+  const dof G = m.ground();
+  m.add<rigid_body>("body", {mass, jxx, jxx, 0.01, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
+  const auto joint = m.add<spherical_joint>(
+      "pivot", {{0, 0, 0, 0, 0, 0, 0, 0, -d, 0, 0, d}, k, 0.4 * std::sqrt(k * mass)}, G, G, G, G, G, G, x[0], x[1],
+      x[2], r);
+  m.add<spatial_force>("gravity", {0, 0, -mass * g, 0, 0, 0, 0, 0}, x[0], x[1], x[2]);
+  m.add<initial_rotation>("start", {1, 0, 0, theta0 * 180 / pi, 0, 0, 0}, r);
+  // The joint closed at the start: x = (0, d sin theta0, d (1 - cos theta0)).
+  m.add<initial_displacement>("y0", {d * std::sin(theta0)}, x[1]);
+  m.add<initial_displacement>("z0", {d * (1 - std::cos(theta0))}, x[2]);
+  simulation sim(m);
+  std::vector<double> crossings;
+  double prev_t = 0, prev_a = theta0, gap_sum = 0;
+  int gap_n = 0;
+  sim.on_output([&](const auto& s) {
+    const quaternion q = node_quaternion(s, r);
+    const double t = s.time(), a = 2 * std::atan2(q(0), q(3));
+    if (prev_a > 0 && a <= 0) crossings.push_back(prev_t + (t - prev_t) * prev_a / (prev_a - a));
+    prev_t = t, prev_a = a;
+    if (t > end / 2) {
+      gap_sum += m.work(joint)[0];
+      ++gap_n;
+    }
+  });
+  sim.run({.end = end, .out = h, .smax = h, .newton = tight_newton});
+  pendulum_result res;
+  REQUIRE(crossings.size() >= 2);
+  res.period = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  res.gap_ratio = gap_sum / gap_n * k / (mass * g);
+  return res;
+}
+}  // namespace
+
+TEST_SUITE("spatial/joints") {
+  TEST_CASE("SPH3: a compound pendulum swings with the exact period; the joint gap is m g / k") {
+    // Exact period of a compound pendulum of amplitude theta0 (a rigid pivot):
+    // T = 4 sqrt(I_pivot / (m g d)) K(sin(theta0 / 2)), I_pivot = Jxx + m d^2 (complete elliptic
+    // integral of the first kind; Landau-Lifshitz, Mechanics, section 11). The penalty joint moves
+    // the pivot by the gap m g / k, which changes T by O(gap / d): the error must fall with k.
+    const auto t0 = std::chrono::steady_clock::now();
+    const double theta0 = 3 * pi / 180, h = 1e-3;
+    const double ip = 0.02 + 0.25, exact = 4 * std::sqrt(ip / (g * 0.5)) * std::comp_ellint_1(std::sin(theta0 / 2));
+    const double small = 2 * pi * std::sqrt(ip / (g * 0.5));
+    const pendulum_result soft = compound_pendulum(1e5, theta0, 3.2, h);
+    const pendulum_result stiff = compound_pendulum(1e6, theta0, 3.2, h);
+    const double es = std::abs(soft.period / exact - 1), ek = std::abs(stiff.period / exact - 1);
+    MESSAGE("SPH3 pendulum: exact T = ", exact, " s (small-amplitude 2 pi sqrt(I/(m g d)) = ", small,
+            " s); k = 1e5: T = ", soft.period, " (rel. error ", es, "), gap k/(m g) = ", soft.gap_ratio,
+            "; k = 1e6: T = ", stiff.period, " (rel. error ", ek, "), gap k/(m g) = ", stiff.gap_ratio, "; ",
+            seconds_since(t0), " s");
+    CHECK(es < 2e-4);
+    CHECK(ek < 5e-5);
+    CHECK(ek < es / 5);  // the compliance error scales like 1 / k (measured: 8.6x for 10x k)
+    // The gap is the transmitted force over k: m g (1 + O(theta0^2)) / k.
+    CHECK(soft.gap_ratio == doctest::Approx(1.0).epsilon(0.01));
+    CHECK(stiff.gap_ratio == doctest::Approx(1.0).epsilon(0.01));
+  }
+
+  TEST_CASE("heavy symmetric top on SPH3: nutation bounds and mean precession of the Lagrange top") {
+    // Goldstein, Classical Mechanics, 3rd ed., section 5.7: with u = cos(theta) (theta the
+    // polar angle of the symmetry axis from the upward vertical),
+    //   u'^2 = f(u) = (1 - u^2)(alpha - beta u) - (b - a u)^2,
+    //   a = I3 w3 / I1, beta = 2 m g l / I1, phi' = (b - a u) / (1 - u^2),
+    // I1 the transverse inertia about the pivot, I3 the axial one, l the pivot-CM distance.
+    // Released at theta0 with spin w3 only (phi' = theta' = 0): b = a u0, alpha = beta u0, and
+    // f(u) = beta (u0 - u)(u - u1)(u2 - u) with u1, u2 the roots of beta u^2 - a^2 u + a^2 u0 - beta.
+    // theta moves between theta0 and acos(u1) (the cusp case); over a nutation period T,
+    //   T / 2 = int_0^pi dchi / sqrt(beta (u2 - u)),  Dphi / 2 = int_0^pi phi'(u) dchi / sqrt(beta (u2 - u)),
+    // with u = (u0 + u1) / 2 + (u0 - u1) / 2 cos chi (smooth periodic integrands: trapezoidal sums).
+    const auto t0 = std::chrono::steady_clock::now();
+    const double mass = 1.0, l = 0.1, j1 = 0.01, j3 = 0.02, w3 = 30.0, theta0 = 30 * pi / 180, k = 1e6, h = 1e-3;
+    const double i1 = j1 + mass * l * l, a = j3 * w3 / i1, beta = 2 * mass * g * l / i1, u0 = std::cos(theta0);
+    const double disc = std::sqrt(a * a * a * a - 4 * beta * (a * a * u0 - beta));
+    const double u1 = (a * a - disc) / (2 * beta), u2 = (a * a + disc) / (2 * beta);
+    double half_t = 0, half_phi = 0;
+    const int nq = 2000;
+    for (int i = 0; i < nq; ++i) {
+      const double chi = (i + 0.5) * pi / nq, u = 0.5 * (u0 + u1) + 0.5 * (u0 - u1) * std::cos(chi);
+      const double dt = pi / nq / std::sqrt(beta * (u2 - u));
+      half_t += dt;
+      half_phi += a * (u0 - u) / (1 - u * u) * dt;
+    }
+    const double period = 2 * half_t, mean_rate = half_phi / half_t, theta1 = std::acos(u1);
+    const int periods = 3;  // CI length: 3 nutation periods (about 0.70 s)
+
+    model<rigid_body, spherical_joint, spatial_force, initial_rotation> m;
+    const auto x = m.add_dofs(3, "x");
+    const rotation_node r = m.add_rotation_node("r");
+    const dof G = m.ground();
+    m.add<rigid_body>("top", {mass, j1, j1, j3, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
+    const vec3 axis0(0, -std::sin(theta0), std::cos(theta0));  // body Z after the tilt about X
+    m.add<spherical_joint>("tip",
+                           {{0, 0, 0, 0, 0, 0, l * axis0.x(), l * axis0.y(), l * axis0.z(), 0, 0, -l}, k,
+                            0.4 * std::sqrt(k * mass)},
+                           G, G, G, G, G, G, x[0], x[1], x[2], r);
+    m.add<spatial_force>("gravity", {0, 0, -mass * g, 0, 0, 0, 0, 0}, x[0], x[1], x[2]);
+    m.add<initial_rotation>("start", {1, 0, 0, theta0 * 180 / pi, w3 * axis0.x(), w3 * axis0.y(), w3 * axis0.z()}, r);
+    simulation sim(m);
+    double th_min = pi, th_max = 0, phi = 0, prev = std::atan2(axis0.y(), axis0.x());
+    sim.on_output([&](const auto& s) {
+      const vec3 ax = node_rotation(s, r).col(2);
+      const double th = std::acos(ax.z()), az = std::atan2(ax.y(), ax.x());
+      th_min = std::min(th_min, th);
+      th_max = std::max(th_max, th);
+      phi += std::remainder(az - prev, 2 * pi);
+      prev = az;
+    });
+    sim.run({.end = periods * period, .out = h, .smax = h, .newton = tight_newton});
+    const double rate = phi / (periods * period), amp = theta1 - theta0;
+    MESSAGE("heavy top: theta in [", th_min * 180 / pi, ", ", th_max * 180 / pi, "] deg vs exact [",
+            theta0 * 180 / pi, ", ", theta1 * 180 / pi, "]; mean precession ", rate, " rad/s vs exact ", mean_rate,
+            " (fast-top approximation m g l / (I3 w3) = ", mass * g * l / (j3 * w3), "); nutation period ", period,
+            " s; ", seconds_since(t0), " s");
+    // Tolerances: 1 % of the nutation amplitude for the bounds (sampling at h, the O(m g / k)
+    // compliance of the joint and the trapezoidal phase error (w h)^2 / 12 are all smaller),
+    // 0.5 % for the mean precession rate.
+    CHECK(std::abs(th_min - theta0) < 0.01 * amp);
+    CHECK(std::abs(th_max - theta1) < 0.01 * amp);
+    CHECK(rate == doctest::Approx(mean_rate).epsilon(5e-3));
+  }
+
+  TEST_CASE("SPH3 with k <= 0 or c < 0 stops the run with code 100 in its name") {
+    for (const auto& [k, c, mention] : {std::tuple{0.0, 0.0, "k <= 0"}, std::tuple{1.0, -1.0, "c < 0"}}) {
+      model<rigid_body, spherical_joint> m;
+      const auto x = m.add_dofs(3, "x");
+      const rotation_node r = m.add_rotation_node("r");
+      const dof G = m.ground();
+      m.add<rigid_body>("body", {1, 1, 1, 1, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
+      m.add<spherical_joint>("ball", {{}, k, c}, G, G, G, G, G, G, x[0], x[1], x[2], r);
+      simulation sim(m);
+      check_error(error_from([&] { sim.run({.end = 0.1, .smax = 0.01}); }), error_code::invalid_parameter, "SPH3",
+                  "ball", mention);
+    }
+  }
+}
