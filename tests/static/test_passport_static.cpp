@@ -61,7 +61,7 @@ static_assert(pradis::element_traits<planar_link>::has_k && !pradis::element_tra
 static_assert(pradis::element_traits<planar_inertia>::has_m && !pradis::element_traits<planar_inertia>::has_k);
 // Absent blocks take no storage in the local output.
 static_assert(sizeof(pradis::local_output<linear_spring>) < sizeof(pradis::local_output<eccentric_mass>));
-static_assert(pradis::library_model::element_types::size == 18);
+static_assert(pradis::library_model::element_types::size == 20);
 // Rotational nodes: BODY3 has q1..q3 at local 3..5 and the hidden q4 as its internal DOF 6.
 static_assert(pradis::element_traits<rigid_body>::rotations == 1);
 static_assert(pradis::element_traits<rigid_body>::rotation_nodes[0] == pradis::rotation_slot{3, 6});
