@@ -3,7 +3,8 @@
 // Mechanics of Materials; the frequency constant 1.87510407 of the clamped-free beam
 // from its characteristic equation cos(bL) cosh(bL) = -1): the static tip deflection
 // P L^3 / (3 E I) in both bending planes, the first bending frequency
-// (1.87510407^2 / L^2) sqrt(E I / (rho A)) of the element matrices, and the end moment
+// (1.87510407^2 / L^2) sqrt(E I / (rho A)) of the element matrices and of a transient
+// free vibration (BEAMI3 through the integrator), and the end moment
 // M = 2 pi E I / L that rolls the cantilever into a full circle (the tip returns to
 // the root and turns by 360 degrees: a pure moment bends an elastic rod into a
 // circular arc of radius E I / M). Bad input: codes 100 and 101 with element,
@@ -37,8 +38,8 @@ struct section {
   double e = 1e4, g = 4e3, a = 0.03, iy = 1e-4, iz = 2e-4, j = 1.5e-4, rho = 100;
 };
 
-/// A cantilever of n BEAM3 elements clamped at x = 0 (root node: q1..q3 on the ground).
-template <class Model>
+/// A cantilever of n BEAM3 elements (and BEAMI3 if with_inertia) clamped at x = 0 (root node: q1..q3 on the ground).
+template <class Model, bool with_inertia = false>
 struct cantilever {
   Model m;
   std::vector<std::array<dof, 3>> x;  // translations of nodes 1..n
@@ -61,12 +62,21 @@ struct cantilever {
       m.template add<elastic_beam>("beam" + std::to_string(i + 1),
                                    {s.e, s.g, s.a, s.iy, s.iz, s.j, xa, 0, 0, xb, 0, 0, 0, 1, 0}, xa_d[0], xa_d[1],
                                    xa_d[2], ra, xb_d[0], xb_d[1], xb_d[2], rb);
+      if constexpr (with_inertia)
+        m.template add<beam_inertia>("mass" + std::to_string(i + 1),
+                                     {s.rho, s.a, s.iy, s.iz, s.iy + s.iz, xa, 0, 0, xb, 0, 0, 0, 1, 0}, xa_d[0], xa_d[1],
+                                     xa_d[2], ra, xb_d[0], xb_d[1], xb_d[2], rb);
     }
   }
   const std::array<dof, 3>& tip() const { return x.back(); }
   rotation_node tip_rotation() const { return r.back(); }
 };
 
+/// The slender steel bar of the frequency tests, 10 mm x 20 mm (L / h = 50).
+constexpr section steel{.e = 2.1e11, .g = 8.1e10, .a = 2e-4, .iy = 0.01 * 0.008 / 12 * 1e-3, .iz = 0.02 * 1e-6 / 12,
+                        .j = 4.6e-9, .rho = 7850};
+/// Newton tolerances for the steel bar (axial stiffness E A = 4.2e7 N: round-off of the flows ~1e-8 N; loads ~0.1 N).
+constexpr newton_options steel_newton{.dabsu = 1e-9, .drltu = 0, .dabsi = 1e-7, .drlti = 0, .itr = 8};
 /// Newton tolerances far below the accuracy the tests check (forces of order 1e-4 .. 10 N).
 constexpr newton_options tight{.dabsu = 1e-12, .drltu = 0, .dabsi = 1e-11, .drlti = 0, .itr = 8};
 }  // namespace
@@ -94,8 +104,7 @@ TEST_SUITE("spatial/beam") {
     // (x, y, z, theta): at identity quaternions dtheta/dq = 2 E(q) = 2 [I 0]. A slender steel bar, 10 mm x 20 mm
     // (L / h = 50): BEAMI3 includes the rotary inertia of the section (a Rayleigh beam), which lowers the
     // frequency below the Euler-Bernoulli value by about (r / L)^2 times a constant.
-    const section s{.e = 2.1e11, .g = 8.1e10, .a = 2e-4, .iy = 0.01 * 0.008 / 12 * 1e-3, .iz = 0.02 * 1e-6 / 12,
-                    .j = 4.6e-9, .rho = 7850};
+    const section s = steel;
     const int n = 10, nd = 6 * n;
     const double le = 1.0 / n;
     Eigen::MatrixXd k = Eigen::MatrixXd::Zero(nd, nd), mm = Eigen::MatrixXd::Zero(nd, nd);
@@ -139,6 +148,34 @@ TEST_SUITE("spatial/beam") {
     CHECK(std::abs(f2 / fz - 1) < 5e-3);
   }
 
+  TEST_CASE("cantilever, 10 BEAM3 + BEAMI3 in a transient: free vibration after a step load at the first frequency") {
+    // A constant tip force from t = 0 on the straight bar at rest: the tip oscillates about the static
+    // deflection P L^3 / (3 E Iz) (97% of it in the first mode); the period from the upward crossings of that
+    // level over two periods. Newmark average acceleration at h = T/100 lengthens the period by Omega^2/12 = 3.3e-4.
+    const section s = steel;
+    cantilever<model<elastic_beam, beam_inertia, spatial_force>, true> c(10, s);
+    const double p = 3 * s.e * s.iz * 1e-4;  // static tip deflection 1e-4 L
+    c.m.add<spatial_force>("load", {0, p, 0, 0, 0, 0, 0, 0}, c.tip()[0], c.tip()[1], c.tip()[2]);
+    const double f_exact = 1.87510407 * 1.87510407 * std::sqrt(s.e * s.iz / (s.rho * s.a)) / (2 * pi);
+    const double period = 1 / f_exact, h = period / 100, level = 1e-4;
+    simulation sim(c.m);
+    std::vector<double> crossings;
+    double t_prev = 0, u_prev = 0;
+    for (int k = 1; k <= 230; ++k) {
+      sim.run({.end = k * h, .smax = h, .smin = h / 64, .newton = steel_newton});
+      const double u = sim.u(c.tip()[1]), t = sim.time();
+      if (u_prev < level && u >= level && t_prev > 0)
+        crossings.push_back(t_prev + (level - u_prev) / (u - u_prev) * (t - t_prev));
+      t_prev = t;
+      u_prev = u;
+    }
+    REQUIRE(crossings.size() >= 2);
+    const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+    MESSAGE("transient first period ", measured, " s vs Euler-Bernoulli ", period, " s: relative error ",
+            measured / period - 1);
+    CHECK(std::abs(measured / period - 1) < 5e-3);
+  }
+
   TEST_CASE("cantilever, 10 BEAM3: an end moment 2 pi E I / L, ramped, rolls it into a full circle") {
     const section s;
     cantilever<model<elastic_beam, body_torque>> c(10);
@@ -153,6 +190,7 @@ TEST_SUITE("spatial/beam") {
     MESSAGE("roll-up: tip gap ", gap, " L, tip orientation off the identity by ", turn, " rad");
     CHECK(gap < 1e-2);
     CHECK(std::abs(turn) < 1e-2);
+    CHECK(q(3) < 0);  // a continuous path of quaternions through 360 degrees ends at -identity
   }
 
   TEST_CASE("BEAM3 and BEAMI3 refuse a zero length and non-positive moduli or sections (100), a wrong count (101)") {
