@@ -490,4 +490,24 @@ TEST_SUITE("core/allocation") {
     CHECK(many.steps == 18);
     CHECK(std::isfinite(sim.u(rb.q4)));
   }
+
+  TEST_CASE("steps of a spatial beam model (BEAM3, BEAMI3, M3B) do not allocate") {
+    model<elastic_beam, beam_inertia, body_torque> m;
+    const auto x = m.add_dofs(3, "x");
+    const rotation_node r = m.add_rotation_node("r");
+    const beam_inertia::parameters in{7800, 1e-4, 1e-9, 1e-9, 2e-9, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+    m.add<elastic_beam>("beam", {2e11, 8e10, 1e-4, 1e-9, 1e-9, 2e-9, 0, 0, 0, 1, 0, 0, 0, 1, 0}, m.ground(), m.ground(),
+                        m.ground(), m.ground(), m.ground(), m.ground(), x[0], x[1], x[2], r);
+    m.add<beam_inertia>("mass", in, m.ground(), m.ground(), m.ground(), m.ground(), m.ground(), m.ground(), x[0], x[1],
+                        x[2], r);
+    m.add<body_torque>("torque", {0.01, 0.02, -0.01, 0, 0, 0, 0, 0}, r);
+    simulation sim(m);
+    sim.run({.end = 1e-3, .smax = 1e-3});
+    sim.run({.end = 2e-3, .smax = 1e-3});
+    run_statistics many{};
+    const allocation_counts counts = count_allocations([&] { many = sim.run({.end = 20e-3, .smax = 1e-3}); });
+    check_none(counts);
+    CHECK(many.steps == 18);
+    CHECK(std::isfinite(sim.u(r.q4)));
+  }
 }

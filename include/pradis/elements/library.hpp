@@ -15,6 +15,7 @@
 #include "pradis/elements/planar/eccentric_mass.hpp"
 #include "pradis/elements/planar/planar_inertia.hpp"
 #include "pradis/elements/planar/planar_link.hpp"
+#include "pradis/elements/spatial/beam.hpp"
 #include "pradis/elements/spatial/initial_rotation.hpp"
 #include "pradis/elements/spatial/loads.hpp"
 #include "pradis/elements/spatial/rigid_body.hpp"
@@ -33,12 +34,15 @@ using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, cons
 using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass>;
 /// Spatial mechanics (rotational nodes with the hidden fourth potential, docs/rotations.md).
 using spatial_elements = type_list<rigid_body, spatial_force, spatial_torque, body_force, body_torque, initial_rotation>;
-// --- spatial connecting elements (SD3, RSD3, SPH3, REV3) ---
+// --- spatial connecting elements (SD3, RSD3, SPH3) ---
 /// Spatial connecting elements: spring-dampers and penalty joints between bodies (docs/rotations.md).
 using spatial_connector_elements = type_list<spatial_spring_damper, rotational_spring_damper, spherical_joint>;
 // --- end of spatial connecting elements ---
+/// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md).
+using beam_elements = type_list<elastic_beam, beam_inertia>;
 /// Every element type of the built-in library.
-using library_elements = concat_t<mech1d_elements, planar_elements, spatial_elements, spatial_connector_elements>;
+using library_elements =
+    concat_t<mech1d_elements, planar_elements, spatial_elements, spatial_connector_elements, beam_elements>;
 
 }  // namespace pradis::elements
 
