@@ -4,7 +4,8 @@
 #
 #   scripts/fuzz.sh [SECONDS] [BUILD_DIR]      (default 60 s, /tmp/pradis-fuzz)
 #
-# Needs clang with libFuzzer (Debian: apt-get install -y clang) and Eigen 3.4.
+# Needs clang with libFuzzer and Eigen 3.4; installs the Debian packages clang and
+# libeigen3-dev itself when they are missing.
 # New interesting inputs are kept in BUILD_DIR/corpus (copy the good ones to
 # fuzz/corpus/ by hand). A crash is written to fuzz/regressions/crash-<hash>;
 # commit it: tests/lang/test_fuzz_regressions.cpp replays every file there.
@@ -15,6 +16,10 @@ build=${2:-/tmp/pradis-fuzz}
 root=$(cd "$(dirname "$0")/.." && pwd)
 cxx=${CXX_FUZZ:-clang++}
 eigen=${EIGEN_INCLUDE:-/usr/include/eigen3}
+if ! command -v "$cxx" >/dev/null 2>&1 || [ ! -d "$eigen" ]; then
+  echo "fuzz.sh: installing clang and Eigen (Debian packages)"
+  apt-get update && apt-get install -y clang libeigen3-dev
+fi
 mkdir -p "$build/corpus" "$root/fuzz/regressions"
 echo "fuzz.sh: building $build/fuzz_parser with $cxx"
 "$cxx" -std=c++20 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
