@@ -468,8 +468,10 @@ TEST_SUITE("core/allocation") {
     CHECK(std::isfinite(sim.u(r.q4)));
   }
 
-  TEST_CASE("steps of a spatial model with the connecting elements SD3, RSD3, SPH3 (ends on the ground) do not allocate") {
-    model<rigid_body, spatial_spring_damper, rotational_spring_damper, spherical_joint, initial_rotation> m;
+  TEST_CASE("steps of a spatial model with the connecting elements SD3, RSD3, SPH3, REV3 (ends on the ground) do not allocate") {
+    model<rigid_body, spatial_spring_damper, rotational_spring_damper, spherical_joint, revolute_joint,
+          initial_rotation>
+        m;
     const auto xa = m.add_dofs(3, "xa");
     const auto xb = m.add_dofs(3, "xb");
     const rotation_node ra = m.add_rotation_node("ra"), rb = m.add_rotation_node("rb");
@@ -480,6 +482,7 @@ TEST_SUITE("core/allocation") {
                                  rb);
     m.add<rotational_spring_damper>("rsd", rotational_spring_damper::example(), g, g, g, rb);
     m.add<spherical_joint>("ball", spherical_joint::example(), g, g, g, g, g, g, xa[0], xa[1], xa[2], ra);
+    m.add<revolute_joint>("hinge", revolute_joint::example(), xa[0], xa[1], xa[2], ra, xb[0], xb[1], xb[2], rb);
     m.add<initial_rotation>("start", initial_rotation::example(), ra);
     simulation sim(m);
     sim.run({.end = 1e-3, .smax = 1e-3});

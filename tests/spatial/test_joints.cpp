@@ -4,12 +4,16 @@
 // the heavy symmetric top (Lagrange top: BODY3 spinning on SPH3 at its tip under
 // gravity, F3) against the nutation bounds and the mean precession rate from the
 // cubic f(u) of Goldstein, Classical Mechanics (3rd ed., 2002), section 5.7.
+// The penalty hinge REV3: a compound pendulum on a hinge (same exact period; the motion
+// stays in the plane normal to the axis), free rotation about the hinge under a constant
+// torque (theta = M t^2 / (2 J)) while a perpendicular torque M is resisted by M / kr.
 
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <tuple>
 #include <vector>
@@ -31,6 +35,31 @@ constexpr double g = 9.81;
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+/// Exact period of a compound pendulum released at rest from theta0 about a rigid pivot
+/// (axis): T = 4 sqrt(I_pivot / (m g d)) K(sin(theta0 / 2)), I_pivot = J + m d^2, K the
+/// complete elliptic integral of the first kind (Landau-Lifshitz, Mechanics, section 11).
+double compound_pendulum_period(double i_pivot, double mass, double d, double theta0) {
+  return 4 * std::sqrt(i_pivot / (mass * g * d)) * std::comp_ellint_1(std::sin(theta0 / 2));
+}
+
+/// Downward zero crossings of a swing angle a(t) sampled at the outputs, and the mean
+/// period between them (linear interpolation between samples).
+struct downward_crossings {
+  std::vector<double> times;  ///< crossing times [s]
+  double prev_t = 0;          ///< previous sample time [s]
+  double prev_a;              ///< previous sample angle [rad]
+  /// Starting at angle a0 at t = 0.
+  explicit downward_crossings(double a0) : prev_a(a0) {}
+  void add(double t, double a) {
+    if (prev_a > 0 && a <= 0) times.push_back(prev_t + (t - prev_t) * prev_a / (prev_a - a));
+    prev_t = t, prev_a = a;
+  }
+  double period() const {
+    REQUIRE(times.size() >= 2);
+    return (times.back() - times.front()) / static_cast<double>(times.size() - 1);
+  }
+};
 
 /// Result of one compound-pendulum run.
 struct pendulum_result {
@@ -56,14 +85,13 @@ pendulum_result compound_pendulum(double k, double theta0, double end, double h)
   m.add<initial_displacement>("y0", {d * std::sin(theta0)}, x[1]);
   m.add<initial_displacement>("z0", {d * (1 - std::cos(theta0))}, x[2]);
   simulation sim(m);
-  std::vector<double> crossings;
-  double prev_t = 0, prev_a = theta0, gap_sum = 0;
+  downward_crossings crossings(theta0);
+  double gap_sum = 0;
   int gap_n = 0;
   sim.on_output([&](const auto& s) {
     const quaternion q = node_quaternion(s, r);
-    const double t = s.time(), a = 2 * std::atan2(q(0), q(3));
-    if (prev_a > 0 && a <= 0) crossings.push_back(prev_t + (t - prev_t) * prev_a / (prev_a - a));
-    prev_t = t, prev_a = a;
+    const double t = s.time();
+    crossings.add(t, 2 * std::atan2(q(0), q(3)));
     if (t > end / 2) {
       gap_sum += m.work(joint)[0];
       ++gap_n;
@@ -71,8 +99,7 @@ pendulum_result compound_pendulum(double k, double theta0, double end, double h)
   });
   sim.run({.end = end, .out = h, .smax = h, .newton = tight_newton});
   pendulum_result res;
-  REQUIRE(crossings.size() >= 2);
-  res.period = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  res.period = crossings.period();
   res.gap_ratio = gap_sum / gap_n * k / (mass * g);
   return res;
 }
@@ -86,7 +113,7 @@ TEST_SUITE("spatial/joints") {
     // the pivot by the gap m g / k, which changes T by O(gap / d): the error must fall with k.
     const auto t0 = std::chrono::steady_clock::now();
     const double theta0 = 3 * pi / 180, h = 1e-3;
-    const double ip = 0.02 + 0.25, exact = 4 * std::sqrt(ip / (g * 0.5)) * std::comp_ellint_1(std::sin(theta0 / 2));
+    const double ip = 0.02 + 0.25, exact = compound_pendulum_period(ip, 1.0, 0.5, theta0);
     const double small = 2 * pi * std::sqrt(ip / (g * 0.5));
     const pendulum_result soft = compound_pendulum(1e5, theta0, 3.2, h);
     const pendulum_result stiff = compound_pendulum(1e6, theta0, 3.2, h);
@@ -177,6 +204,132 @@ TEST_SUITE("spatial/joints") {
       simulation sim(m);
       check_error(error_from([&] { sim.run({.end = 0.1, .smax = 0.01}); }), error_code::invalid_parameter, "SPH3",
                   "ball", mention);
+    }
+  }
+
+  TEST_CASE("REV3: a hinge pendulum swings with the exact period and stays in the plane normal to the axis") {
+    // A compound pendulum on a rigid hinge about X through the pivot obeys I_O theta'' = -m g d sin(theta)
+    // exactly (I_O = Jxx + m d^2 about the hinge line, d the distance of the centre of mass from it): the
+    // period is the compound-pendulum period of Landau-Lifshitz, Mechanics, section 11 (see
+    // compound_pendulum_period). To load the rotational coupling out of the plane, the pivot is offset
+    // by 0.1 m along the axis from the centre of mass and the body has a product of inertia Jxy: a rigid
+    // hinge carries the resulting moments about Y and Z, the penalty hinge turns by O(moment / kr).
+    const auto t0 = std::chrono::steady_clock::now();
+    const double mass = 1.0, jxx = 0.02, d = 0.5, off = 0.1, theta0 = 60 * pi / 180, k = 1e6, kr = 1e5, h = 1e-3;
+    const double ip = jxx + mass * d * d, exact = compound_pendulum_period(ip, mass, d, theta0);
+    model<rigid_body, revolute_joint, spatial_force, initial_rotation, initial_displacement> m;
+    const auto x = m.add_dofs(3, "x");
+    const rotation_node r = m.add_rotation_node("r");
+    const dof G = m.ground();
+    m.add<rigid_body>("body", {mass, jxx, 0.015, 0.01, 0.004, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
+    const auto hinge = m.add<revolute_joint>(
+        "hinge",
+        {{0, 0, 0, 0, 0, 0, -off, 0, -d, off, 0, d}, 1, 0, 0, 1, 0, 0, k, 0.4 * std::sqrt(k * mass), kr,
+         0.4 * std::sqrt(kr * ip)},
+        G, G, G, G, G, G, x[0], x[1], x[2], r);
+    m.add<spatial_force>("gravity", {0, 0, -mass * g, 0, 0, 0, 0, 0}, x[0], x[1], x[2]);
+    m.add<initial_rotation>("start", {1, 0, 0, theta0 * 180 / pi, 0, 0, 0}, r);
+    // The joint closed at the start: x = (0, d sin theta0, d (1 - cos theta0)).
+    m.add<initial_displacement>("y0", {d * std::sin(theta0)}, x[1]);
+    m.add<initial_displacement>("z0", {d * (1 - std::cos(theta0))}, x[2]);
+    simulation sim(m);
+    downward_crossings crossings(theta0);
+    double max_x = 0, max_tilt = 0, max_phi = 0;
+    sim.on_output([&](const auto& s) {
+      const mat3 rot = node_rotation(s, r);
+      crossings.add(s.time(), std::atan2(rot(2, 1), rot(1, 1)));  // angle of the body's Y axis about X
+      max_x = std::max(max_x, std::abs(s.u(x[0])));                // out-of-plane displacement
+      max_tilt = std::max(max_tilt, std::abs(rot(0, 1)) + std::abs(rot(0, 2)));  // body axes out of the plane
+      max_phi = std::max(max_phi, m.work(hinge)[4]);               // misalignment angle of the axes
+    });
+    sim.run({.end = 1.3 * exact, .out = h, .smax = h, .newton = tight_newton});
+    const double period = crossings.period(), err = std::abs(period / exact - 1);
+    MESSAGE("REV3 pendulum (60 deg): exact T = ", exact, " s, T = ", period, " (rel. error ", err,
+            "); max |x| = ", max_x, " m (m g / k = ", mass * g / k, "), max misalignment ", max_phi,
+            " rad, max out-of-plane body axis components ", max_tilt, " (m g off / kr = ", mass * g * off / kr,
+            "); ", seconds_since(t0), " s");
+    CHECK(err < 1e-4);
+    // Out of the plane: translation at the penalty level of the gap (m g / k = 1e-5 m, up to ~3 m g
+    // at the bottom of the swing), rotation at the level of (pivot moment) / kr (m g off / kr = 1e-5).
+    CHECK(max_x < 5 * mass * g / k);
+    CHECK(max_phi < 5 * mass * g * off / kr);
+    CHECK(max_tilt < 10 * mass * g * off / kr);
+    CHECK(max_phi > 0.5 * mass * g * off / kr);  // the axes do turn: the moment is carried by kr
+  }
+
+  TEST_CASE("REV3: free rotation about the hinge under a torque, a perpendicular torque is resisted by kr") {
+    // A body on a hinge along its principal axis Z through its centre of mass: a torque Mz about the axis
+    // gives the uniformly accelerated rotation theta = Mz t^2 / (2 Jzz) (Euler's equation about a fixed
+    // axis, e.g. Goldstein, Classical Mechanics, 3rd ed., section 5.5, with omega along a principal axis);
+    // a torque Mx about X turns the axis by Mx / kr (the static penalty deflection of the hinge; Jxx =
+    // Jyy, so the spin about the tilted axis needs no gyroscopic moment).
+    const auto t0 = std::chrono::steady_clock::now();
+    const double jxx = 0.01, jzz = 0.02, mz = 1.0, mx = 0.5, kr = 1e4, k = 1e6, end = 0.4, h = 1e-3;
+    model<rigid_body, revolute_joint, spatial_torque> m;
+    const auto x = m.add_dofs(3, "x");
+    const rotation_node r = m.add_rotation_node("r");
+    const dof G = m.ground();
+    m.add<rigid_body>("body", {1.0, jxx, jxx, jzz, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
+    const auto hinge = m.add<revolute_joint>(
+        "hinge", {{}, 0, 0, 2, 0, 0, 1, k, 0.4 * std::sqrt(k), kr, 0.4 * std::sqrt(kr * jxx)}, G, G, G, G, G, G, x[0],
+        x[1], x[2], r);
+    m.add<spatial_torque>("torque", {mx, 0, mz, 0, 0, 0, 0, 0}, r);
+    simulation sim(m);
+    double theta = 0, prev = 0;
+    sim.on_output([&](const auto& s) {
+      const mat3 rot = node_rotation(s, r);
+      const double a = std::atan2(rot(1, 0), rot(0, 0));
+      theta += std::remainder(a - prev, 2 * pi);
+      prev = a;
+    });
+    sim.run({.end = end, .out = h, .smax = h, .newton = tight_newton});
+    const double exact = mz * end * end / (2 * jzz);
+    const mat3 rot = node_rotation(sim, r);
+    const double phi = m.work(hinge)[4];
+    MESSAGE("REV3 free hinge: theta(", end, ") = ", theta, " rad vs Mz t^2 / (2 J) = ", exact, " (rel. error ",
+            theta / exact - 1, "); misalignment ", phi, " rad vs Mx / kr = ", mx / kr, "; body Z axis ",
+            rot.col(2).transpose(), "; moment on b ", m.work(hinge)[5], " ", m.work(hinge)[6], " ",
+            m.work(hinge)[7], "; ", seconds_since(t0), " s");
+    CHECK(theta == doctest::Approx(exact).epsilon(1e-4));
+    // The tilt: about +X by Mx / kr (sin(phi) kr = Mx at equilibrium), body Z -> (0, -sin phi, cos phi).
+    CHECK(phi == doctest::Approx(std::asin(mx / kr)).epsilon(1e-2));
+    CHECK(-rot(1, 2) == doctest::Approx(mx / kr).epsilon(1e-2));
+    CHECK(std::abs(rot(0, 2)) < 1e-2 * mx / kr);
+    CHECK(m.work(hinge)[5] == doctest::Approx(-mx).epsilon(1e-2));  // the hinge holds b against Mx
+  }
+
+  TEST_CASE("REV3 with a zero hinge axis, kr <= 0, cr < 0 or a non-finite value stops the run with code 100") {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    struct bad {
+      revolute_joint::parameters p;
+      const char* mention;
+    };
+    const revolute_joint::parameters ok{{}, 1, 0, 0, 1, 0, 0, 1e4, 10, 1e3, 1};
+    std::vector<bad> cases;
+    auto with = [&](auto f, const char* mention) {
+      revolute_joint::parameters p = ok;
+      f(p);
+      cases.push_back({p, mention});
+    };
+    with([](auto& p) { p.eax = 0; }, "zero hinge axis");
+    with([](auto& p) { p.eby = nan; }, "hinge axis e_b");
+    with([](auto& p) { p.kr = 0; }, "kr <= 0");
+    with([](auto& p) { p.kr = -1; }, "kr <= 0");
+    with([](auto& p) { p.cr = -1; }, "cr < 0");
+    with([](auto& p) { p.cr = nan; }, "cr < 0");
+    with([](auto& p) { p.geo.rbx = nan; }, "must be finite");
+    with([](auto& p) { p.k = 0; }, "k <= 0");
+    for (const bad& b : cases) {
+      CAPTURE(b.mention);
+      model<rigid_body, revolute_joint> m;
+      const auto x = m.add_dofs(3, "x");
+      const rotation_node r = m.add_rotation_node("r");
+      const dof G = m.ground();
+      m.add<rigid_body>("body", {1, 1, 1, 1, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
+      m.add<revolute_joint>("hinge", b.p, G, G, G, G, G, G, x[0], x[1], x[2], r);
+      simulation sim(m);
+      check_error(error_from([&] { sim.run({.end = 0.1, .smax = 0.01}); }), error_code::invalid_parameter, "REV3",
+                  "hinge", b.mention);
     }
   }
 }

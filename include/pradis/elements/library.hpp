@@ -34,9 +34,10 @@ using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, cons
 using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass>;
 /// Spatial mechanics (rotational nodes with the hidden fourth potential, docs/rotations.md).
 using spatial_elements = type_list<rigid_body, spatial_force, spatial_torque, body_force, body_torque, initial_rotation>;
-// --- spatial connecting elements (SD3, RSD3, SPH3) ---
+// --- spatial connecting elements (SD3, RSD3, SPH3, REV3) ---
 /// Spatial connecting elements: spring-dampers and penalty joints between bodies (docs/rotations.md).
-using spatial_connector_elements = type_list<spatial_spring_damper, rotational_spring_damper, spherical_joint>;
+using spatial_connector_elements =
+    type_list<spatial_spring_damper, rotational_spring_damper, spherical_joint, revolute_joint>;
 // --- end of spatial connecting elements ---
 /// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md).
 using beam_elements = type_list<elastic_beam, beam_inertia>;
