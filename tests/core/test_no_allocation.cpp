@@ -468,9 +468,9 @@ TEST_SUITE("core/allocation") {
     CHECK(std::isfinite(sim.u(r.q4)));
   }
 
-  TEST_CASE("steps of a spatial model with the connecting elements SD3, RSD3, SPH3, REV3 (ends on the ground) do not allocate") {
-    model<rigid_body, spatial_spring_damper, rotational_spring_damper, spherical_joint, revolute_joint,
-          initial_rotation>
+  TEST_CASE("steps of a spatial model with the connecting elements SD3, RSD3, SPH3, REV3, SHC3 (ends on the ground) do not allocate") {
+    model<rigid_body, spatial_spring_damper, rotational_spring_damper, spherical_joint, revolute_joint, shaft_coupling,
+          velocity_source, initial_rotation>
         m;
     const auto xa = m.add_dofs(3, "xa");
     const auto xb = m.add_dofs(3, "xb");
@@ -483,6 +483,9 @@ TEST_SUITE("core/allocation") {
     m.add<rotational_spring_damper>("rsd", rotational_spring_damper::example(), g, g, g, rb);
     m.add<spherical_joint>("ball", spherical_joint::example(), g, g, g, g, g, g, xa[0], xa[1], xa[2], ra);
     m.add<revolute_joint>("hinge", revolute_joint::example(), xa[0], xa[1], xa[2], ra, xb[0], xb[1], xb[2], rb);
+    const dof shaft = m.add_dof("shaft");
+    m.add<shaft_coupling>("coupling", shaft_coupling::example(), shaft, rb);
+    m.add<velocity_source>("drive", {0, 0, 0, 2.0}, shaft);
     m.add<initial_rotation>("start", initial_rotation::example(), ra);
     simulation sim(m);
     sim.run({.end = 1e-3, .smax = 1e-3});

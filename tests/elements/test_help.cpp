@@ -29,6 +29,7 @@ constexpr std::string_view code100_situation(std::string_view name) {
   if (name == "SD3" || name == "RSD3") return "k < 0";
   if (name == "SPH3") return "k <= 0";
   if (name == "REV3") return "kr <= 0";
+  if (name == "SHC3") return "the axis is zero, k <= 0, c < 0";
   if (name == "BEAM3" || name == "BEAMI3") return "coincide";
   return "";
 }
@@ -44,7 +45,7 @@ void check_special() {
   CHECK(special.find(code100_situation(name)) != std::string::npos);
   if (name == "XSRC" || name == "VSRC" || name == "X0" || name == "V0") CHECK(special.find("code 90") != std::string::npos);
   if (name == "LINKD" || name == "BODY3" || name == "F3B" || name == "M3B" || name == "SD3" || name == "RSD3" ||
-      name == "SPH3" || name == "REV3" || name == "BEAM3" || name == "BEAMI3")
+      name == "SPH3" || name == "REV3" || name == "BEAM3" || name == "BEAMI3" || name == "SHC3")
     CHECK(special.find("code 75") != std::string::npos);
   if (name == "ROT0") CHECK(special.find("code 90") != std::string::npos);
 }
@@ -58,7 +59,7 @@ void check_all_special(pradis::type_list<Es...>) {
 
 TEST_SUITE("elements/help") {
   TEST_CASE("the help text of every library element names its code-100 situations (and 90 / 75 where they apply)") {
-    static_assert(pradis::elements::library_elements::size == 24);
+    static_assert(pradis::elements::library_elements::size == 25);
     check_all_special(pradis::elements::library_elements{});
   }
 }

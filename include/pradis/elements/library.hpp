@@ -16,6 +16,7 @@
 #include "pradis/elements/planar/planar_inertia.hpp"
 #include "pradis/elements/planar/planar_link.hpp"
 #include "pradis/elements/spatial/beam.hpp"
+#include "pradis/elements/spatial/coupling.hpp"
 #include "pradis/elements/spatial/initial_rotation.hpp"
 #include "pradis/elements/spatial/loads.hpp"
 #include "pradis/elements/spatial/rigid_body.hpp"
@@ -34,10 +35,11 @@ using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, cons
 using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass>;
 /// Spatial mechanics (rotational nodes with the hidden fourth potential, docs/rotations.md).
 using spatial_elements = type_list<rigid_body, spatial_force, spatial_torque, body_force, body_torque, initial_rotation>;
-// --- spatial connecting elements (SD3, RSD3, SPH3, REV3) ---
-/// Spatial connecting elements: spring-dampers and penalty joints between bodies (docs/rotations.md).
+// --- spatial connecting elements (SD3, RSD3, SPH3, REV3, SHC3) ---
+/// Spatial connecting elements: spring-dampers and penalty joints between bodies, and the
+/// shaft coupling from a one-dimensional rotation to a spatial node (docs/rotations.md).
 using spatial_connector_elements =
-    type_list<spatial_spring_damper, rotational_spring_damper, spherical_joint, revolute_joint>;
+    type_list<spatial_spring_damper, rotational_spring_damper, spherical_joint, revolute_joint, shaft_coupling>;
 // --- end of spatial connecting elements ---
 /// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md).
 using beam_elements = type_list<elastic_beam, beam_inertia>;
