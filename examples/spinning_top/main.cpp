@@ -21,6 +21,7 @@
 #include <string>
 
 #include "pradis/elements/library.hpp"
+#include "top_model.hpp"
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/io/table.hpp"
 #include "pradis/spatial/node_state.hpp"
@@ -42,21 +43,11 @@ int main(int argc, char** argv) try {
   }
   std::filesystem::create_directories(dir);
 
-  const double pi = std::numbers::pi, g = 9.81;
-  const double mass = 1.0, l = 0.1, j1 = 0.01, j3 = 0.02, w3 = 30.0, theta0 = 30 * pi / 180, k = 1e6;
-  const vec3 axis0(0, -std::sin(theta0), std::cos(theta0));  // body Z after the tilt about X
-
-  model<rigid_body, spherical_joint, spatial_force, initial_rotation> m;
-  const auto x = m.add_dofs(3, "x");                     // the centre of mass
-  const rotation_node r = m.add_rotation_node("r");      // the top's orientation
-  const dof G = m.ground();
-  m.add<rigid_body>("top", {mass, j1, j1, j3, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
-  // Joint point A: the origin (ground); B: the tip, l below the centre of mass along body Z.
-  m.add<spherical_joint>("tip", {{0, 0, 0, 0, 0, 0, l * axis0.x(), l * axis0.y(), l * axis0.z(), 0, 0, -l}, k,
-                                 0.4 * std::sqrt(k * mass)},
-                         G, G, G, G, G, G, x[0], x[1], x[2], r);
-  m.add<spatial_force>("gravity", {0, 0, -mass * g, 0, 0, 0, 0, 0}, x[0], x[1], x[2]);
-  m.add<initial_rotation>("start", {1, 0, 0, theta0 * 180 / pi, w3 * axis0.x(), w3 * axis0.y(), w3 * axis0.z()}, r);
+  const double pi = std::numbers::pi;
+  pradis_examples::spinning_top top;
+  auto& m = top.m;
+  const rotation_node r = top.r;
+  const double l = top.l;
 
   io::table out({"axis tip X [m]", "axis tip Y [m]", "axis tip Z [m]", "polar angle [deg]", "azimuth [deg]",
                  "joint gap [m]"});

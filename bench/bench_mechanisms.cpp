@@ -1,0 +1,35 @@
+// Time per simulated second of the spatial example mechanisms (issue: spatial
+// mechanics): the heavy symmetric top of examples/spinning_top (BODY3 on SPH3 under
+// gravity, h = 1 ms, tight Newton tolerances as in the example). Each iteration builds
+// the scene and simulates `ms` milliseconds of motion; the counter
+// cpu_per_simulated_s is the CPU time per simulated second (console: seconds with an SI
+// prefix, "250m" = 0.25 s of CPU per second of motion), steps_per_s the step rate.
+//
+// Full run (Release): build/release/bench/pradis_bench --benchmark_filter=mechanism
+//   --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+
+#include <benchmark/benchmark.h>
+
+#include "pradis/integrators/simulation.hpp"
+#include "spinning_top/top_model.hpp"
+
+namespace {
+
+void mechanism_spinning_top(benchmark::State& state) {
+  const double end = static_cast<double>(state.range(0)) * 1e-3;
+  long steps = 0;
+  for (auto _ : state) {
+    pradis_examples::spinning_top top;
+    pradis::simulation sim(top.m);
+    const auto st = sim.run({.end = end, .out = 0, .smax = 1e-3,
+                             .newton = {.dabsu = 1e-12, .drltu = 0, .dabsi = 1e-10, .drlti = 0}});
+    steps += st.steps;
+    benchmark::DoNotOptimize(sim.u(top.r.q4));
+  }
+  state.counters["cpu_per_simulated_s"] =
+      benchmark::Counter(end * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["steps_per_s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+}
+BENCHMARK(mechanism_spinning_top)->ArgName("ms")->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+}  // namespace

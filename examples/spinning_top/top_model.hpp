@@ -1,0 +1,56 @@
+#pragma once
+/// \file
+/// The heavy symmetric top of examples/spinning_top, as a reusable scene (the example,
+/// and the benchmark of time per simulated second in bench/bench_mechanisms.cpp).
+
+#include <cmath>
+#include <numbers>
+
+#include "pradis/elements/library.hpp"
+
+namespace pradis_examples {
+
+/// A rigid body (BODY3) symmetric about its Z axis, its tip held at the origin by a
+/// spherical joint (SPH3, penalty stiffness k), under gravity (a constant F3 on the
+/// centre of mass), spinning at w3 about its axis, released at theta0 from the
+/// vertical with no precession or nutation rate (Goldstein, Classical Mechanics,
+/// 3rd ed., section 5.7).
+struct spinning_top {
+  static constexpr double g = 9.81;
+  double mass = 1.0;      ///< mass [kg]
+  double l = 0.1;         ///< tip to centre of mass [m]
+  double j1 = 0.01;       ///< transverse inertia about the centre of mass [kg m^2]
+  double j3 = 0.02;       ///< polar inertia [kg m^2]
+  double w3 = 30.0;       ///< spin [rad/s]
+  double theta0 = 30 * std::numbers::pi / 180;  ///< initial tilt [rad]
+  double k = 1e6;         ///< joint penalty stiffness [N/m]
+
+  using model_type = pradis::model<pradis::elements::rigid_body, pradis::elements::spherical_joint,
+                                   pradis::elements::spatial_force, pradis::elements::initial_rotation>;
+  model_type m;
+  std::vector<pradis::dof> x;  ///< the centre of mass
+  pradis::rotation_node r;     ///< the top's orientation
+
+  /// The axis (body Z) at the start, after the tilt about X.
+  pradis::spatial::vec3 axis0() const { return {0, -std::sin(theta0), std::cos(theta0)}; }
+
+  spinning_top() {
+    using namespace pradis::elements;
+    x = m.add_dofs(3, "x");
+    r = m.add_rotation_node("r");
+    const pradis::dof G = m.ground();
+    const pradis::spatial::vec3 a = axis0();
+    m.add<rigid_body>("top", {mass, j1, j1, j3, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
+    // Joint point A: the origin (ground); B: the tip, l below the centre of mass along body Z.
+    m.add<spherical_joint>("tip", {{0, 0, 0, 0, 0, 0, l * a.x(), l * a.y(), l * a.z(), 0, 0, -l}, k,
+                                   0.4 * std::sqrt(k * mass)},
+                           G, G, G, G, G, G, x[0], x[1], x[2], r);
+    m.add<spatial_force>("gravity", {0, 0, -mass * g, 0, 0, 0, 0, 0}, x[0], x[1], x[2]);
+    m.add<initial_rotation>("start", {1, 0, 0, theta0 * 180 / std::numbers::pi, w3 * a.x(), w3 * a.y(), w3 * a.z()},
+                            r);
+  }
+  spinning_top(const spinning_top&) = delete;
+  spinning_top& operator=(const spinning_top&) = delete;
+};
+
+}  // namespace pradis_examples
