@@ -4,12 +4,18 @@
 
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <cmath>
 
 #include "pradis/pradis.hpp"
 #include "pradis/spatial/node_state.hpp"
 
 namespace pradis_spatial_tests {
+
+/// Wall-clock seconds since t0 (reported by the tests next to their figures).
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
 /// Newton tolerances far below every accuracy the spatial tests check.
 inline constexpr pradis::newton_options tight_newton{.dabsu = 1e-12, .drltu = 0, .dabsi = 1e-10, .drlti = 0};

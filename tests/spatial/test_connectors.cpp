@@ -22,6 +22,7 @@ using namespace pradis::elements;
 using namespace pradis::spatial;
 using pradis_element_tests::check_error;
 using pradis_element_tests::error_from;
+using pradis_spatial_tests::seconds_since;
 using pradis_spatial_tests::tight_newton;
 
 namespace {
@@ -30,9 +31,6 @@ constexpr double g = 9.81;
 /// Body parameters: mass m, principal inertias (jx, jy, jz), centre of mass at the reference point.
 rigid_body::parameters body(double m, double jx, double jy, double jz) { return {m, jx, jy, jz, 0, 0, 0, 0, 0, 0}; }
 /// Seconds since t0.
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 }  // namespace
 
 TEST_SUITE("spatial/connectors") {

@@ -19,15 +19,13 @@ using namespace pradis::elements;
 using namespace pradis::spatial;
 using pradis_element_tests::check_error;
 using pradis_element_tests::error_from;
+using pradis_spatial_tests::seconds_since;
 using pradis_spatial_tests::tight_newton;
 
 namespace {
 constexpr double pi = std::numbers::pi;
 /// An isotropic body: mass m, central inertia j about every axis.
 rigid_body::parameters sphere(double m, double j) { return {m, j, j, j, 0, 0, 0, 0, 0, 0}; }
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 }  // namespace
 
 TEST_SUITE("spatial/coupling") {

@@ -26,15 +26,13 @@ using namespace pradis::elements;
 using namespace pradis::spatial;
 using pradis_element_tests::check_error;
 using pradis_element_tests::error_from;
+using pradis_spatial_tests::seconds_since;
 using pradis_spatial_tests::tight_newton;
 
 namespace {
 constexpr double pi = std::numbers::pi;
 constexpr double g = 9.81;
 /// Seconds since t0.
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 /// Exact period of a compound pendulum released at rest from theta0 about a rigid pivot
 /// (axis): T = 4 sqrt(I_pivot / (m g d)) K(sin(theta0 / 2)), I_pivot = J + m d^2, K the
