@@ -1,6 +1,8 @@
 // Time per simulated second of the spatial example mechanisms (issue: spatial
 // mechanics): the heavy symmetric top of examples/spinning_top (BODY3 on SPH3 under
-// gravity, h = 1 ms, tight Newton tolerances as in the example). Each iteration builds
+// gravity, h = 1 ms, tight Newton tolerances as in the example) and the crankshaft of
+// examples/crankshaft (75 DOFs: 8 BEAM3 + BEAMI3, bearings, rod, piston, gas force,
+// SHC3 drive; h = 0.1 ms as in the example, the first `ms` of the run-up from rest). Each iteration builds
 // the scene and simulates `ms` milliseconds of motion; the counter
 // cpu_per_simulated_s is the CPU time per simulated second (console: seconds with an SI
 // prefix, "250m" = 0.25 s of CPU per second of motion), steps_per_s the step rate.
@@ -11,6 +13,7 @@
 #include <benchmark/benchmark.h>
 
 #include "pradis/integrators/simulation.hpp"
+#include "crankshaft/crankshaft_model.hpp"
 #include "spinning_top/top_model.hpp"
 
 namespace {
@@ -31,5 +34,22 @@ void mechanism_spinning_top(benchmark::State& state) {
   state.counters["steps_per_s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
 }
 BENCHMARK(mechanism_spinning_top)->ArgName("ms")->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+void mechanism_crankshaft(benchmark::State& state) {
+  const double end = static_cast<double>(state.range(0)) * 1e-3;
+  long steps = 0;
+  for (auto _ : state) {
+    crankshaft::model_type m;
+    const auto h = crankshaft::build(m, crankshaft::parameters{});
+    pradis::simulation sim(m);
+    const auto st = sim.run({.end = end, .out = 0, .smax = 1e-4});
+    steps += st.steps;
+    benchmark::DoNotOptimize(sim.u(h.py));
+  }
+  state.counters["cpu_per_simulated_s"] =
+      benchmark::Counter(end * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["steps_per_s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+}
+BENCHMARK(mechanism_crankshaft)->ArgName("ms")->Arg(5)->Arg(100)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -1,0 +1,98 @@
+// The crankshaft example's own element GASF (examples/crankshaft/crankshaft_model.hpp):
+// its Jacobian by finite differences, the force of its formula at and off top dead
+// centre and during the switch-on, its bad parameters (code 100); and the static
+// load of the belt on the two main bearings of the crankshaft at rest (statics of a
+// shaft on two supports with an overhung load).
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <sstream>
+
+#include "../elements/element_test_support.hpp"
+#include "crankshaft/crankshaft_model.hpp"
+#include "pradis/integrators/simulation.hpp"
+#include "pradis/testing/jacobian_check.hpp"
+
+using namespace pradis;
+using pradis_element_tests::check_error;
+using pradis_element_tests::error_from;
+
+TEST_SUITE("examples/crankshaft") {
+  TEST_CASE("GASF: finite-difference Jacobian, F = -p A exp(-(u/s_w)^2), the switch-on (1 - cos(pi t/t_in))/2") {
+    const crankshaft::gas_force e(crankshaft::gas_force::example());
+    testing::jacobian_checker<crankshaft::gas_force> chk(e);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> uni(-1.0, 1.0);
+    for (int trial = 0; trial < 50; ++trial) {
+      local_input<crankshaft::gas_force> in;
+      in.u(0) = 0.03 * uni(rng);
+      in.t = 0.1 + 0.1 * uni(rng);
+      const auto r = chk.check(in);
+      std::ostringstream os;
+      r.print(os);
+      CHECK_MESSAGE(r.ok, os.str());
+    }
+    // The formula: p = 5e6, A = 5e-3, s_w = 0.01, t_in = 0.1 (example()).
+    auto force = [&](double u, double t) {
+      local_input<crankshaft::gas_force> in;
+      in.u(0) = u;
+      in.t = t;
+      local_output<crankshaft::gas_force> out;
+      std::array<double, 1> work{};
+      element_context ctx("GASF", "gas");
+      ctx.work = work;
+      e.evaluate(in, out, ctx);
+      CHECK(out.f(0) == -work[0]);
+      return work[0];
+    };
+    CHECK(force(0, 0.2) == doctest::Approx(-5e6 * 5e-3));
+    CHECK(force(-0.01, 0.2) == doctest::Approx(-5e6 * 5e-3 * std::exp(-1.0)));
+    CHECK(force(0, 0.05) == doctest::Approx(-5e6 * 5e-3 * 0.5));
+    CHECK(force(0, 0.0) == 0.0);
+  }
+
+  TEST_CASE("GASF with a negative pressure, a zero area or width, or a non-finite value stops with code 100") {
+    struct bad {
+      crankshaft::gas_force::parameters p;
+      const char* mention;
+    };
+    for (const bad b : {bad{{-1, 1e-3, 0.01, 0}, "p_peak"}, bad{{1e6, 0, 0.01, 0}, "A = 0"},
+                        bad{{1e6, 1e-3, 0, 0}, "s_w = 0"}, bad{{1e6, 1e-3, 0.01, -1}, "t_in"},
+                        bad{{std::nan(""), 1e-3, 0.01, 0}, "must be finite"}}) {
+      model<crankshaft::gas_force, elements::point_mass> m;
+      const dof x = m.add_dof("x");
+      m.add<elements::point_mass>("m", {1.0}, x);
+      m.add<crankshaft::gas_force>("gas", b.p, x);
+      simulation sim(m);
+      check_error(error_from([&] { sim.run({.end = 0.01, .smax = 1e-3}); }), error_code::invalid_parameter, "GASF", "gas",
+                  b.mention);
+    }
+  }
+
+  TEST_CASE("crankshaft at rest: the belt pull loads the main bearings as a shaft on two supports, gaps = R / k") {
+    // No drive speed, no gas: the belt force F on the pulley (X = 0), bearings at X = 0.05
+    // and 0.15 (span L = 0.10, overhang a = 0.05): R1 = F (a + L) / L = 1.5 F, R2 = -F a / L =
+    // -0.5 F (statics). The bearing gaps are R / k_bearing once the damped motion has settled.
+    crankshaft::parameters P;
+    P.w_end = 0;
+    P.p_peak = 0;
+    crankshaft::model_type m;
+    const auto h = crankshaft::build(m, P);
+    // Generalized-alpha with rho_inf = 0 annihilates the undamped high-frequency bending
+    // modes that the sudden load excites, so the statics are reached in a few steps.
+    simulation<crankshaft::model_type, generalized_alpha> sim(m, generalized_alpha(0.0));
+    sim.run({.end = 0.05, .smax = 1e-3});
+    const auto w1 = m.work(h.bearing1), w2 = m.work(h.bearing2);
+    const double g1 = w1[0], g2 = w2[0];
+    MESSAGE("forces on the journals: (", w1[1], ", ", w1[2], ", ", w1[3], ") and (", w2[1], ", ", w2[2], ", ", w2[3],
+            "); gaps ", g1, " m and ", g2, " m; statics 1.5 F = ", 1.5 * P.belt_force, ", -0.5 F = ",
+            -0.5 * P.belt_force);
+    CHECK(std::abs(w1[3] / (1.5 * P.belt_force) - 1) < 1e-3);
+    CHECK(std::abs(w2[3] / (-0.5 * P.belt_force) - 1) < 1e-3);
+    CHECK(std::abs(g1 / (1.5 * P.belt_force / P.k_bearing) - 1) < 1e-3);
+    CHECK(std::abs(g2 / (0.5 * P.belt_force / P.k_bearing) - 1) < 1e-3);
+  }
+}
