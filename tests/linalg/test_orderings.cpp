@@ -201,7 +201,10 @@ TEST_SUITE("linalg") {
     CHECK(brute_force_min_fill(pats.back()) == min_fill_ordering{}(pats.back()));
   }
 
-  TEST_CASE("min_fill orders a 50,000-node hub-and-chain graph quickly (lazy deletion, no O(n^2))") {
+  TEST_CASE("min_fill orders a 50,000-node hub-and-chain graph without fill (its time is reported)") {
+    // Without lazy deletion this graph costs O(n^2) (seconds); the time is printed, not
+    // asserted: speed is measured by bench/sparse (pradis_bench_sparse), never by a timed
+    // test on a shared machine.
     const int n = 50000;
     entries_t e;
     for (int i = 0; i < n; ++i) {
@@ -214,7 +217,6 @@ TEST_SUITE("linalg") {
     lu.analyze(p);
     CHECK(lu.statistics().fill == 0);
     MESSAGE("hub + chain, n = 50000: min_fill ordering " << lu.statistics().order_seconds << " s");
-    CHECK(lu.statistics().order_seconds < 5.0);  // O(n^2) without lazy deletion: seconds
   }
 
   TEST_CASE("min_fill gives no more fill than min_degree on 30x30 and 60x60 grids, and far less than row_count") {
@@ -307,18 +309,19 @@ TEST_SUITE("linalg") {
     CHECK(is_permutation_of_iota(min_degree_ordering{}(p), p.n));
   }
 
-  TEST_CASE("min_degree orders a 1,000,000-node chain and a 300x300 grid quickly") {
+  TEST_CASE("min_degree orders a 1,000,000-node chain without fill and a 300x300 grid (times reported)") {
+    // The times are printed, not asserted (measured 0.11 s and 0.02 s at -O2; speed is
+    // checked by bench/sparse, never by a timed test on a shared machine).
     sparse_lu<min_degree_ordering> lu;
     lu.analyze(chain_pattern(1000000));
     CHECK(lu.statistics().fill == 0);
     CHECK(is_permutation_of_iota(lu.permutation(), 1000000));
     MESSAGE("chain, n = 1,000,000: min_degree ordering " << lu.statistics().order_seconds << " s");
-    CHECK(lu.statistics().order_seconds < 5.0);  // measured 0.11 s at -O2
     sparse_lu<min_degree_ordering> g;
     g.analyze(grid_pattern(300, 300));
     MESSAGE("300x300 grid: min_degree ordering " << g.statistics().order_seconds << " s, fill "
                                                  << g.statistics().fill);
-    CHECK(g.statistics().order_seconds < 5.0);  // measured 0.02 s at -O2
+    CHECK(is_permutation_of_iota(g.permutation(), 90000));
   }
 
   TEST_CASE("automatic_ordering picks the documented OPTIM level at each size boundary") {
