@@ -72,6 +72,12 @@ inline const std::vector<program_info>& output_programs() {
   static const std::vector<program_info> v{
       {"X", "potential of a node (order 1 displacement, 2 velocity, 3 acceleration) or a work-vector entry",
        "Body 2 X 'X (4; 1)    Link force 'X (W:Connection(3); 1)", ""},
+      {"W", "global angular velocity of a spatial rotational node about X, Y or Z (k = 1, 2, 3) [rad/s]; the node "
+            "by its three rotation nodes q1 q2 q3 (0 for a fixed one)",
+       "Crank speed 'W (4 5 6; 1)", ""},
+      {"LQ", "quaternion norm Lq = |q| of a spatial rotational node (its hidden q4 included); the node by its "
+             "three rotation nodes",
+       "Norm 'LQ (4 5 6)", ""},
       {"NSTEP", "number of accepted integration steps so far", "Steps 'NSTEP ()", ""},
       {"NITER", "Newton iterations of the last accepted step", "Iterations 'NITER ()", ""},
       {"STEP", "size of the last accepted step", "Step 'STEP ()", ""},

@@ -30,6 +30,7 @@
 #include "pradis/lang/ast.hpp"
 #include "pradis/lang/catalog.hpp"
 #include "pradis/lang/parser.hpp"
+#include "pradis/spatial/node_state.hpp"
 
 namespace pradis::lang {
 
@@ -63,7 +64,7 @@ class stage_scheme : public alpha_scheme {
 
 /// One output variable (#OUTPUT line).
 struct output_column {
-  enum class kind { potential, work, statistic };
+  enum class kind { potential, work, statistic, angular_velocity, norm };
   std::string label;
   location loc;
   kind what = kind::potential;
@@ -71,6 +72,8 @@ struct output_column {
   std::string element;               ///< work: instance name
   int index = 0;                     ///< work: 1-based entry
   std::string statistic;             ///< statistic: NSTEP, NITER, ...
+  rotation_node rotation{};          ///< angular_velocity ('W, component in order) and norm ('LQ)
+  std::string nodes;                 ///< 'W, 'LQ: the three node numbers as written, for the label
 };
 
 /// What one run stage did (for the report of `pradis run`).
@@ -449,21 +452,38 @@ class session {
           o.what = output_column::kind::potential;
           const int node = node_list({target}).front();
           if (node == 0) fail(target.loc, "node 0 is the ground: its potential is always zero");
-          if (sc.external) {
-            if (auto e = sc.external->find(node); e != sc.external->end())
-              o.dof = e->second;
-            else if (auto i = sc.internal.find(node); i != sc.internal.end())
-              o.dof = i->second;
-            else
-              fail(target.loc,
-                   "node " + std::to_string(node) + " is not connected to any element of fragment " + f.name);
-          } else {
-            auto it = node_dof_.find(node);
-            if (it == node_dof_.end())
-              fail(target.loc, "node " + std::to_string(node) + " is not connected to any element");
-            o.dof = it->second;
-          }
+          o.dof = output_dof(f, sc, node, target.loc);
           o.node = node;
+        }
+      } else if (c.program == "W" || c.program == "LQ") {
+        const bool w = c.program == "W";
+        const char* usage = w ? "'W needs (q1 q2 q3; k): the three rotation nodes of a spatial node and the axis "
+                                "k = 1, 2, 3 (X, Y, Z)"
+                              : "'LQ needs (q1 q2 q3): the three rotation nodes of a spatial node";
+        if (c.args.empty() || c.args[0].size() != 3 || c.args.size() != (w ? 2u : 1u)) fail(c.args_loc, usage);
+        const std::vector<int> nodes = node_list(c.args[0]);
+        std::array<int, 3> dofs{};
+        int first = -1;  // a component on the ground (node 0) is a fixed angular DOF
+        for (std::size_t k = 0; k < 3; ++k)
+          if (nodes[k] != 0) {
+            dofs[k] = output_dof(f, sc, nodes[k], c.args[0][k].loc);
+            if (first < 0) first = dofs[k];
+          }
+        if (first < 0) fail(c.args[0][0].loc, "nodes 0 0 0 are the ground, not a spatial rotational node");
+        const auto rn = model_->find_rotation_node(dof{first});
+        if (!rn || rn->q1.index != dofs[0] || rn->q2.index != dofs[1] || rn->q3.index != dofs[2])
+          fail(c.args[0][0].loc, "nodes " + std::to_string(nodes[0]) + " " + std::to_string(nodes[1]) + " " +
+                                     std::to_string(nodes[2]) +
+                                     " are not the q1 q2 q3 of a spatial rotational node, in this order (a node is "
+                                     "made by the rotational DOFs of an element such as BODY3)");
+        o.rotation = *rn;
+        o.nodes = std::to_string(nodes[0]) + " " + std::to_string(nodes[1]) + " " + std::to_string(nodes[2]);
+        if (w) {
+          if (c.args[1].size() != 1) fail(c.args_loc, usage);
+          o.order = whole(c.args[1][0], "the axis of 'W (1 X, 2 Y, 3 Z)", 1, 3);
+          o.what = output_column::kind::angular_velocity;
+        } else {
+          o.what = output_column::kind::norm;
         }
       } else {
         if (!c.args.empty() && !(c.args.size() == 1 && c.args[0].empty()))
@@ -479,6 +499,18 @@ class session {
     }
   }
 
+  /// The model DOF of node `node` of fragment f (its external or internal node), for an output.
+  int output_dof(const ast::fragment& f, const scope& sc, int node, const location& loc) const {
+    if (sc.external) {
+      if (auto e = sc.external->find(node); e != sc.external->end()) return e->second;
+      if (auto i = sc.internal.find(node); i != sc.internal.end()) return i->second;
+      fail(loc, "node " + std::to_string(node) + " is not connected to any element of fragment " + f.name);
+    }
+    auto it = node_dof_.find(node);
+    if (it == node_dof_.end()) fail(loc, "node " + std::to_string(node) + " is not connected to any element");
+    return it->second;
+  }
+
   static std::string auto_label(const ast::call& c, const output_column& o) {
     switch (o.what) {
       case output_column::kind::potential:
@@ -487,6 +519,10 @@ class session {
         return "X(W:" + o.element + "(" + std::to_string(o.index) + "))";
       case output_column::kind::statistic:
         return c.program;
+      case output_column::kind::angular_velocity:
+        return "W(" + o.nodes + ";" + std::to_string(o.order) + ")";
+      case output_column::kind::norm:
+        return "LQ(" + o.nodes + ")";
     }
     return c.program;
   }
@@ -700,6 +736,12 @@ class session {
           break;
         case output_column::kind::statistic:
           row.push_back(s.statistic(o.statistic));
+          break;
+        case output_column::kind::angular_velocity:
+          row.push_back(spatial::node_angular_velocity(s, o.rotation)(o.order - 1));
+          break;
+        case output_column::kind::norm:
+          row.push_back(spatial::node_norm(s, o.rotation));
           break;
       }
     }
