@@ -16,6 +16,22 @@
 #include "pradis/elements/spatial/attachment.hpp"
 #include "pradis/spatial/quaternion.hpp"
 
+/// The parameter lines 1..12 (the joint geometry) of the help texts of SPH3 and REV3,
+/// a string literal so that each element appends its own lines at compile time.
+#define PRADIS_JOINT_GEOMETRY_HELP \
+    "1 - initial X of body a's reference point [m]\n" \
+    "2 - initial Y of body a's reference point [m]\n" \
+    "3 - initial Z of body a's reference point [m]\n" \
+    "4 - x of joint point A from a's reference point, body a frame [m]\n" \
+    "5 - y of A, body a frame [m]\n" \
+    "6 - z of A, body a frame [m]\n" \
+    "7 - initial X of body b's reference point [m]\n" \
+    "8 - initial Y of body b's reference point [m]\n" \
+    "9 - initial Z of body b's reference point [m]\n" \
+    "10 - x of joint point B from b's reference point, body b frame [m]\n" \
+    "11 - y of B, body b frame [m]\n" \
+    "12 - z of B, body b frame [m]\n"
+
 namespace pradis::elements {
 
 namespace detail {
@@ -55,18 +71,7 @@ inline constexpr std::string_view joint_dof_help =
     "12 - q3 of body b [-] (connect DOFs 1-6 or 7-12 to the ground for a joint to the ground)";
 /// The parameter lines of the help text of SPH3.
 inline constexpr std::string_view spherical_joint_parameter_help =
-    "1 - initial X of body a's reference point [m]\n"
-    "2 - initial Y of body a's reference point [m]\n"
-    "3 - initial Z of body a's reference point [m]\n"
-    "4 - x of joint point A from a's reference point, body a frame [m]\n"
-    "5 - y of A, body a frame [m]\n"
-    "6 - z of A, body a frame [m]\n"
-    "7 - initial X of body b's reference point [m]\n"
-    "8 - initial Y of body b's reference point [m]\n"
-    "9 - initial Z of body b's reference point [m]\n"
-    "10 - x of joint point B from b's reference point, body b frame [m]\n"
-    "11 - y of B, body b frame [m]\n"
-    "12 - z of B, body b frame [m]\n"
+    PRADIS_JOINT_GEOMETRY_HELP
     "13 - penalty stiffness k on the gap p_B - p_A [N/m] (> 0)\n"
     "14 - penalty damping c on the gap rate [N s/m] (>= 0)";
 
@@ -174,18 +179,7 @@ struct revolute_joint {
               "misalignment of two body-fixed hinge axes [N, N m]",
       .field = "mechanics, spatial motion",
       .dofs = detail::joint_dof_help,
-      .parameters = "1 - initial X of body a's reference point [m]\n"
-                    "2 - initial Y of body a's reference point [m]\n"
-                    "3 - initial Z of body a's reference point [m]\n"
-                    "4 - x of joint point A from a's reference point, body a frame [m]\n"
-                    "5 - y of A, body a frame [m]\n"
-                    "6 - z of A, body a frame [m]\n"
-                    "7 - initial X of body b's reference point [m]\n"
-                    "8 - initial Y of body b's reference point [m]\n"
-                    "9 - initial Z of body b's reference point [m]\n"
-                    "10 - x of joint point B from b's reference point, body b frame [m]\n"
-                    "11 - y of B, body b frame [m]\n"
-                    "12 - z of B, body b frame [m]\n"
+      .parameters = PRADIS_JOINT_GEOMETRY_HELP
                     "13 - x of the hinge axis e_a, body a frame (normalised; any non-zero length) [-]\n"
                     "14 - y of e_a [-]\n"
                     "15 - z of e_a [-]\n"
@@ -300,3 +294,5 @@ struct revolute_joint {
 };
 
 }  // namespace pradis::elements
+
+#undef PRADIS_JOINT_GEOMETRY_HELP
