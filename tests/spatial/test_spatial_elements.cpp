@@ -29,6 +29,23 @@ using pradis_element_tests::error_from;
 using pradis_spatial_tests::tight_newton;
 
 namespace {
+/// A model file: a body spinning about Z at 2 rad/s (Jz = 2) under a moment of 1 N m
+/// about Z, NEWMARK for 1 s at h = 1e-3, with more elements and the outputs given.
+std::string spin_model(const std::string& more_elements, const std::string& outputs) {
+  return "$DATA:\n"
+         "    Body = 1, 1, 1, 2, 0, 0, 0, 0, 0, 0\n"
+         "    Spin = 0, 0, 1, 0, 0, 0, 2\n"
+         "    Drive = 0, 0, 1, 0, 0, 0, 0, 0\n"
+         "$FRAGMENT:\n"
+         "#STRUCTURE:\n"
+         "    Body 'BODY3 (1 2 3 4 5 6; Body)\n"
+         "    Start 'ROT0 (4 5 6; Spin)\n"
+         "    Motor 'M3 (4 5 6; Drive)\n" +
+         more_elements + "#OUTPUT:\n" + outputs +
+         "$RUN:\n"
+         "    Spin up 'NEWMARK (END=1, OUT=0.1, SMAX=1E-3, DABSU=1E-12, DRLTU=0, DABSI=1E-10, DRLTI=0)\n"
+         "$END\n";
+}
 constexpr double pi = std::numbers::pi;
 /// Body parameters: mass m, principal inertias (jx, jy, jz), centre of mass at P.
 rigid_body::parameters body(double m, double jx, double jy, double jz) { return {m, jx, jy, jz, 0, 0, 0, 0, 0, 0}; }
@@ -362,21 +379,7 @@ TEST_SUITE("spatial/elements") {
   TEST_CASE("the model language places BODY3, ROT0 and M3 by node numbers; the hidden q4 is created by itself") {
     // A body spinning about Z at 2 rad/s with Jz = 2 and a moment 1 N m about Z:
     // theta = 2 t + t^2 / 4 (Euler's equation about a fixed principal axis).
-    const std::string text =
-        "$DATA:\n"
-        "    Body = 1, 1, 1, 2, 0, 0, 0, 0, 0, 0\n"
-        "    Spin = 0, 0, 1, 0, 0, 0, 2\n"
-        "    Drive = 0, 0, 1, 0, 0, 0, 0, 0\n"
-        "$FRAGMENT:\n"
-        "#STRUCTURE:\n"
-        "    Body 'BODY3 (1 2 3 4 5 6; Body)\n"
-        "    Start 'ROT0 (4 5 6; Spin)\n"
-        "    Motor 'M3 (4 5 6; Drive)\n"
-        "#OUTPUT:\n"
-        "    Q3 'X (6; 1)\n"
-        "$RUN:\n"
-        "    Spin up 'NEWMARK (END=1, OUT=0.1, SMAX=1E-3, DABSU=1E-12, DRLTU=0, DABSI=1E-10, DRLTI=0)\n"
-        "$END\n";
+    const std::string text = spin_model("", "    Q3 'X (6; 1)\n");
     lang::session s(lang::parse_string(text, "spin.prd", lang::read_file));
     s.run({.write_files = false});
     REQUIRE(s.model().rotation_nodes().size() == 1);
@@ -393,27 +396,9 @@ TEST_SUITE("spatial/elements") {
     // turns at w / 2: relative (w h / 2)^2 / 12, at most 2.5 (1.25e-3)^2 / 12 = 3.3e-7 rad/s.
     // Lq moves by h^2 D|w|^2 / 32 (docs/rotations.md), D|w|^2 = 2.5^2 - 2^2 = 2.25 here. A second node with q1 and q2 fixed
     // (nodes 0 0 9) turns about Z under the same moment.
-    const std::string head =
-        "$DATA:\n"
-        "    Body = 1, 1, 1, 2, 0, 0, 0, 0, 0, 0\n"
-        "    Spin = 0, 0, 1, 0, 0, 0, 2\n"
-        "    Drive = 0, 0, 1, 0, 0, 0, 0, 0\n"
-        "$FRAGMENT:\n"
-        "#STRUCTURE:\n"
-        "    Body 'BODY3 (1 2 3 4 5 6; Body)\n"
-        "    Start 'ROT0 (4 5 6; Spin)\n"
-        "    Motor 'M3 (4 5 6; Drive)\n"
-        "    Flat 'BODY3 (0 0 0 0 0 9; Body)\n"
-        "    Motor2 'M3 (0 0 9; Drive)\n"
-        "#OUTPUT:\n";
-    const std::string tail =
-        "$RUN:\n"
-        "    Spin up 'NEWMARK (END=1, OUT=0.1, SMAX=1E-3, DABSU=1E-12, DRLTU=0, DABSI=1E-10, DRLTI=0)\n"
-        "$END\n";
-    const std::string text = head +
-                             "    Wx 'W (4 5 6; 1)\n    Wz 'W (4 5 6; 3)\n    'LQ (4 5 6)\n"
-                             "    Flat wz 'W (0 0 9; 3)\n" +
-                             tail;
+    const std::string flat = "    Flat 'BODY3 (0 0 0 0 0 9; Body)\n    Motor2 'M3 (0 0 9; Drive)\n";
+    const std::string text =
+        spin_model(flat, "    Wx 'W (4 5 6; 1)\n    Wz 'W (4 5 6; 3)\n    'LQ (4 5 6)\n    Flat wz 'W (0 0 9; 3)\n");
     lang::session s(lang::parse_string(text, "spin.prd", lang::read_file));
     s.run({.write_files = false});
     const auto& r = s.results();
@@ -442,7 +427,7 @@ TEST_SUITE("spatial/elements") {
                         bad{"    'W (4 5 7; 1)\n", "node 7 is not connected"}}) {
       CAPTURE(b.output);
       try {
-        lang::session bad_session(lang::parse_string(head + b.output + tail, "bad.prd", lang::read_file));
+        lang::session bad_session(lang::parse_string(spin_model(flat, b.output), "bad.prd", lang::read_file));
         bad_session.run({.write_files = false});
         FAIL("no error for ", b.output);
       } catch (const lang::lang_error& e) {
