@@ -7,7 +7,8 @@
 // reference from a closed form, CPU time = minimum of 3 runs after one warm-up,
 // all solvers in one process.
 //
-// Problems (second-order systems M u'' + g(t, u, u') = 0, M diagonal):
+// Problems (second-order systems M u'' + g(t, u, u') = 0, M diagonal; and two 3D
+// rigid-body problems):
 //   pendulum  large-amplitude rigid pendulum (IFToMM A01: 1 kg, 1 m, g = 9.81,
 //             released from the horizontal) as a 1-DOF angle model
 //             m L^2 phi'' + m g L sin(phi) = 0, phi(0) = pi/2, to t = 10 s; exact
@@ -29,7 +30,24 @@
 //             equations, checked at start-up against RK4 with h = 2e-5, IDA at
 //             rtol = atol = 1e-12, and the pradis model under Newmark with fixed steps
 //             (Richardson extrapolation of h = 2e-5 and 1e-5).
-// Error at the final time: max(|u - u_ref|_inf / |s_u|_inf, |v - v_ref|_inf / |s_v|_inf)
+//   freebody  the torque-free asymmetric rigid body of Hairer-Lubich-Wanner (inertias
+//             (2, 1, 2/3), body angular momentum (cos 1.1, 0, sin 1.1)) over one period
+//             T = 10.73146523488280 of its body-frame angular momentum; pradis: BODY3 +
+//             ROT0 with the hidden fourth quaternion DOF.
+//   top       the heavy top of examples/spinning_top (BODY3 on a penalty SPH3, gravity
+//             F3), to t = 1 s.
+//             For both 3D problems the peers integrate the same equations as a
+//             first-order ODE in (q, omega_b) and (x, x', q, omega_b)
+//             (rigid_body_problems.hpp; rosenbrock4 gets the free body's exact
+//             Jacobian and central differences for the top's), checked
+//             against pradis's assembled residual by tests/integrators/
+//             test_rigid_peer.cpp). Reference: RK4 (h = 1e-4 and 1e-5), checked at
+//             start-up against RK4 with twice the step, IDA at 1e-12, the pradis model
+//             under Newmark extrapolated from two fixed steps, and for freebody the
+//             exact omega_b(T) = omega_b(0). Error: max(rotation angle between the
+//             result and the reference [rad], |omega_b - omega_b,ref|_inf /
+//             |omega_b,ref|_inf).
+// Error at the final time (the other problems): max(|u - u_ref|_inf / |s_u|_inf, |v - v_ref|_inf / |s_v|_inf)
 // (u all displacements, v all velocities), where the scale s is the reference state
 // itself, except for twobody: there s is the reference state about the centre of
 // mass (the exact free fall Y_c = P t^2 / (2 (m1 + m2)), 167 m at t = 1, subtracted
@@ -59,6 +77,8 @@
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "pradis/spatial/node_state.hpp"
+#include "rigid_body_problems.hpp"
 #include "two_bodies_problem.hpp"
 
 #ifdef PRADIS_WP_SUNDIALS
@@ -123,7 +143,33 @@ struct problem {
   std::function<Eigen::VectorXd()> exact;  // (u, v) at t_end
   /// The state whose norms scale the error (empty: the reference state itself).
   std::function<Eigen::VectorXd(const Eigen::VectorXd&)> error_scale;
+
+  // 3D problems (rigid_body_problems.hpp): the peers integrate a first-order ODE
+  // y' = f1(y), y(0) = y0, instead of (u, v); results and the reference are compared
+  // through `compare` (unit quaternion and body angular velocity) with `error`.
+  std::vector<double> y0;
+  std::function<void(const double*, double*)> f1;             // y' = f1(y) (autonomous)
+  std::function<void(const double*, Eigen::MatrixXd&)> jac1;  // df1/dy (empty: central differences)
+  std::function<Eigen::VectorXd(const Eigen::VectorXd&)> compare;                 // peer state -> compared state
+  std::function<double(const Eigen::VectorXd&, const Eigen::VectorXd&)> error;  // (compared, reference)
 };
+
+/// Size of the peers' first-order state.
+inline int peer_size(const problem& pb) { return pb.f1 ? static_cast<int>(pb.y0.size()) : 2 * pb.n; }
+
+/// The peers' initial state: y0, or (u0, v0).
+inline std::vector<double> peer_start(const problem& pb) {
+  if (pb.f1) return pb.y0;
+  std::vector<double> y(pb.u0);
+  y.insert(y.end(), pb.v0.begin(), pb.v0.end());
+  return y;
+}
+
+/// The compared state of a peer's final state.
+inline Eigen::VectorXd peer_result(const problem& pb, const double* y) {
+  const Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(y, peer_size(pb));
+  return pb.compare ? pb.compare(v) : v;
+}
 
 constexpr double pend_g = 9.81, pend_l = 1.0, pend_m = 1.0;
 
@@ -280,6 +326,34 @@ inline problem twobody() {
   return p;
 }
 
+/// The torque-free HLW body (rigid_body_problems.hpp) over one period of its
+/// body-frame angular momentum.
+inline problem freebody() {
+  problem p;
+  p.name = "freebody";
+  p.t_end = rigid::hlw_period;
+  const rigid::vec3 w0 = rigid::hlw_omega0();
+  p.y0 = {0, 0, 0, 1, w0.x(), w0.y(), w0.z()};
+  p.f1 = [](const double* y, double* dy) { rigid::freebody_rhs(y, dy); };
+  p.jac1 = [](const double* y, Eigen::MatrixXd& j) { rigid::freebody_jacobian(y, j); };
+  p.compare = [](const Eigen::VectorXd& y) { return rigid::compare_state(y.head<4>(), y.segment<3>(4)); };
+  p.error = rigid::rotation_error;
+  return p;
+}
+
+/// The heavy top of examples/spinning_top (rigid_body_problems.hpp) to t = 1 s.
+inline problem top() {
+  problem p;
+  p.name = "top";
+  p.t_end = 1.0;
+  const Eigen::VectorXd y0 = rigid::top_start(rigid::top_data::from_example());
+  p.y0.assign(y0.data(), y0.data() + y0.size());
+  p.f1 = [d = rigid::top_data::from_example()](const double* y, double* dy) { rigid::top_rhs(d, y, dy); };
+  p.compare = [](const Eigen::VectorXd& y) { return rigid::compare_state(y.segment<4>(6), y.segment<3>(10)); };
+  p.error = rigid::rotation_error;
+  return p;
+}
+
 /// max(|u - u_ref|_inf / |s_u|_inf, |v - v_ref|_inf / |s_v|_inf): relative error
 /// of the displacements and of the velocities at the final time, scaled by the
 /// state `scale` (the reference itself, or for twobody the reference about the
@@ -374,8 +448,8 @@ run_result run_pradis(const problem& pb, Scheme scheme, const pradis_setting& st
   // Newton tolerances below the requested accuracy; DABSI above the round-off of
   // the flows (stiff: k2 eps |x| ~ 1e-7 N).
   const double nt = st.error_control ? std::max(1e-3 * st.tol, 1e-11) : 1e-11;
-  o.newton = {.dabsu = nt, .drltu = nt, .dabsi = pb.name == "stiff" ? 1e-6 : 1e-10, .drlti = nt, .itr = 8};
-  auto finish = [&](auto& sim, const std::vector<dof>& d) {
+  o.newton = {.dabsu = nt, .drltu = nt, .dabsi = pb.name == "stiff" ? 1e-6 : (pb.name == "top" ? 1e-8 : 1e-10), .drlti = nt, .itr = 8};
+  auto run = [&](auto& sim) {
     try {
       const run_statistics s = sim.run(o);
       r.steps = s.steps;
@@ -385,6 +459,14 @@ run_result run_pradis(const problem& pb, Scheme scheme, const pradis_setting& st
       r.ok = false;
       std::cerr << pb.name << " " << Scheme::name << ": " << e.what() << "\n";
     }
+  };
+  // 3D problems: the compared state (unit quaternion, body angular velocity) of node n.
+  auto finish_rotation = [&](auto& sim, const rotation_node& n) {
+    run(sim);
+    r.y = rigid::compare_state(spatial::node_quaternion(sim, n), spatial::node_body_angular_velocity(sim, n));
+  };
+  auto finish = [&](auto& sim, const std::vector<dof>& d) {
+    run(sim);
     const auto n = static_cast<Eigen::Index>(d.size());
     r.y.resize(2 * n);
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -420,6 +502,14 @@ run_result run_pradis(const problem& pb, Scheme scheme, const pradis_setting& st
     m.add<cubic_spring>("soft3", {4.0}, q[5], m.ground());
     simulation sim(m, scheme);
     finish(sim, q);
+  } else if (pb.name == "freebody") {
+    rigid::freebody_model b;
+    simulation sim(b.m, scheme);
+    finish_rotation(sim, b.r);
+  } else if (pb.name == "top") {
+    pradis_examples::spinning_top t;
+    simulation sim(t.m, scheme);
+    finish_rotation(sim, t.r);
   } else if (pb.name == "twobody") {
     two_bodies::model_type m;
     std::vector<dof> d;
@@ -445,10 +535,15 @@ run_result run_pradis(const problem& pb, Scheme scheme, const pradis_setting& st
 }
 
 // ---------------------------------------------------------------------------
-// Peers: first-order form y = (u, v), y' = (v, -M^-1 g(t, u, v))
+// Peers: first-order form y = (u, v), y' = (v, -M^-1 g(t, u, v)), or for the 3D
+// problems y' = f1(y)
 // ---------------------------------------------------------------------------
 
 inline void rhs(const problem& pb, double t, const double* y, double* dy) {
+  if (pb.f1) {
+    pb.f1(y, dy);
+    return;
+  }
   const int n = pb.n;
   double g[16];
   pb.g(t, y, y + n, g);
@@ -458,11 +553,12 @@ inline void rhs(const problem& pb, double t, const double* y, double* dy) {
   }
 }
 
-/// Reference by the classical Runge-Kutta method with a fixed step h.
+/// Reference by the classical Runge-Kutta method with a fixed step h (the compared
+/// state for the 3D problems).
 inline Eigen::VectorXd rk4_reference(const problem& pb, double h) {
-  const int m = 2 * pb.n;
-  Eigen::VectorXd y(m), k1(m), k2(m), k3(m), k4(m), tmp(m);
-  for (int i = 0; i < pb.n; ++i) y(i) = pb.u0[static_cast<std::size_t>(i)], y(pb.n + i) = pb.v0[static_cast<std::size_t>(i)];
+  const int m = peer_size(pb);
+  const std::vector<double> y0 = peer_start(pb);
+  Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(y0.data(), m), k1(m), k2(m), k3(m), k4(m), tmp(m);
   const long steps = std::lround(pb.t_end / h);
   h = pb.t_end / static_cast<double>(steps);
   double t = 0;
@@ -477,7 +573,7 @@ inline Eigen::VectorXd rk4_reference(const problem& pb, double h) {
     y += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
     t += h;
   }
-  return y;
+  return peer_result(pb, y.data());
 }
 
 #ifdef PRADIS_WP_SUNDIALS
@@ -491,11 +587,17 @@ inline int cv_rhs(sunrealtype t, N_Vector y, N_Vector dy, void* ud) {
   return 0;
 }
 
-/// IDA residual in the implicit second-order form: (u' - v, M v' + g(t, u, v)).
+/// IDA residual in the implicit second-order form: (u' - v, M v' + g(t, u, v)), or
+/// y' - f1(y) for the 3D problems.
 inline int ida_res(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud) {
   const problem& pb = *static_cast<sun_data*>(ud)->pb;
   const double *y = N_VGetArrayPointer(yy), *p = N_VGetArrayPointer(yp);
   double* r = N_VGetArrayPointer(rr);
+  if (pb.f1) {  // 3D problems: y' - f1(y)
+    pb.f1(y, r);
+    for (int i = 0; i < peer_size(pb); ++i) r[i] = p[i] - r[i];
+    return 0;
+  }
   const int n = pb.n;
   double g[16];
   pb.g(t, y, y + n, g);
@@ -510,10 +612,11 @@ inline run_result run_cvode(const problem& pb, double rtol) {
   run_result r;
   SUNContext ctx;
   SUNContext_Create(nullptr, &ctx);
-  const int n2 = 2 * pb.n;
+  const int n2 = peer_size(pb);
   N_Vector y = N_VNew_Serial(n2, ctx);
   double* yd = N_VGetArrayPointer(y);
-  for (int i = 0; i < pb.n; ++i) yd[i] = pb.u0[static_cast<std::size_t>(i)], yd[pb.n + i] = pb.v0[static_cast<std::size_t>(i)];
+  const std::vector<double> y0 = peer_start(pb);
+  std::copy(y0.begin(), y0.end(), yd);
   sun_data ud{&pb};
   void* mem = CVodeCreate(CV_BDF, ctx);
   CVodeInit(mem, cv_rhs, 0.0, y);
@@ -530,7 +633,7 @@ inline run_result run_cvode(const problem& pb, double rtol) {
   CVodeGetNumNonlinSolvIters(mem, &nni);
   CVodeGetNumLinSolvSetups(mem, &nsetup);
   r.steps = nst, r.newton = nni, r.fact = nsetup;
-  r.y = Eigen::Map<Eigen::VectorXd>(yd, n2);
+  r.y = peer_result(pb, yd);
   CVodeFree(&mem);
   SUNLinSolFree(ls);
   SUNMatDestroy(a);
@@ -543,10 +646,11 @@ inline run_result run_ida(const problem& pb, double rtol) {
   run_result r;
   SUNContext ctx;
   SUNContext_Create(nullptr, &ctx);
-  const int n2 = 2 * pb.n;
+  const int n2 = peer_size(pb);
   N_Vector yy = N_VNew_Serial(n2, ctx), yp = N_VNew_Serial(n2, ctx);
   double *y = N_VGetArrayPointer(yy), *p = N_VGetArrayPointer(yp);
-  for (int i = 0; i < pb.n; ++i) y[i] = pb.u0[static_cast<std::size_t>(i)], y[pb.n + i] = pb.v0[static_cast<std::size_t>(i)];
+  const std::vector<double> y0 = peer_start(pb);
+  std::copy(y0.begin(), y0.end(), y);
   rhs(pb, 0.0, y, p);  // consistent initial derivatives
   sun_data ud{&pb};
   void* mem = IDACreate(ctx);
@@ -564,7 +668,7 @@ inline run_result run_ida(const problem& pb, double rtol) {
   IDAGetNumNonlinSolvIters(mem, &nni);
   IDAGetNumLinSolvSetups(mem, &nsetup);
   r.steps = nst, r.newton = nni, r.fact = nsetup;
-  r.y = Eigen::Map<Eigen::VectorXd>(y, n2);
+  r.y = peer_result(pb, y);
   IDAFree(&mem);
   SUNLinSolFree(ls);
   SUNMatDestroy(a);
@@ -580,20 +684,40 @@ namespace odeint = boost::numeric::odeint;
 
 inline run_result run_dopri5(const problem& pb, double rtol) {
   using state = std::vector<double>;
-  state y(static_cast<std::size_t>(2 * pb.n));
-  for (int i = 0; i < pb.n; ++i)
-    y[static_cast<std::size_t>(i)] = pb.u0[static_cast<std::size_t>(i)],
-                              y[static_cast<std::size_t>(pb.n + i)] = pb.v0[static_cast<std::size_t>(i)];
+  state y = peer_start(pb);
   auto f = [&](const state& x, state& dx, double t) { rhs(pb, t, x.data(), dx.data()); };
   run_result r;
   r.steps = static_cast<long>(odeint::integrate_adaptive(
       odeint::make_controlled<odeint::runge_kutta_dopri5<state>>(rtol, rtol), f, y, 0.0, pb.t_end, 1e-6));
-  r.y = Eigen::Map<Eigen::VectorXd>(y.data(), 2 * pb.n);
+  r.y = peer_result(pb, y.data());
   return r;
 }
 
 /// Jacobian of the first-order form y' = (v, -M^-1 g(t, u, v)), row-major, for rosenbrock4.
 inline void first_order_jacobian(const problem& pb, double t, const double* y, double* j, double* dfdt) {
+  if (pb.f1) {  // 3D problems: analytic (freebody) or central differences (top)
+    const int m = peer_size(pb);
+    Eigen::MatrixXd jm(m, m);
+    if (pb.jac1) {
+      pb.jac1(y, jm);
+    } else {
+      Eigen::VectorXd yp = Eigen::Map<const Eigen::VectorXd>(y, m), ym = yp, fp(m), fm(m);
+      for (int b = 0; b < m; ++b) {
+        const double d = 1e-7 * std::max(1.0, std::abs(y[b]));
+        yp(b) = y[b] + d;
+        ym(b) = y[b] - d;
+        pb.f1(yp.data(), fp.data());
+        pb.f1(ym.data(), fm.data());
+        jm.col(b) = (fp - fm) / (2 * d);
+        yp(b) = ym(b) = y[b];
+      }
+    }
+    for (int a = 0; a < m; ++a) {
+      dfdt[a] = 0;
+      for (int b = 0; b < m; ++b) j[a * m + b] = jm(a, b);
+    }
+    return;
+  }
   const int n = pb.n, n2 = 2 * n;
   Eigen::MatrixXd gu(n, n), gv(n, n);
   pb.dg(t, y, y + n, gu, gv);
@@ -610,11 +734,8 @@ inline void first_order_jacobian(const problem& pb, double t, const double* y, d
 
 /// Boost.Odeint rosenbrock4 (C++17 library, rosenbrock4_peer.h) with atol = rtol.
 inline run_result run_rosenbrock4(const problem& pb, double rtol) {
-  const int n2 = 2 * pb.n;
-  std::vector<double> y(static_cast<std::size_t>(n2));
-  for (int i = 0; i < pb.n; ++i)
-    y[static_cast<std::size_t>(i)] = pb.u0[static_cast<std::size_t>(i)],
-                              y[static_cast<std::size_t>(pb.n + i)] = pb.v0[static_cast<std::size_t>(i)];
+  const int n2 = peer_size(pb);
+  std::vector<double> y = peer_start(pb);
   auto f = [](void* u, double t, const double* x, double* dx) { rhs(*static_cast<const problem*>(u), t, x, dx); };
   auto jac = [](void* u, double t, const double* x, double* j, double* dfdt) {
     first_order_jacobian(*static_cast<const problem*>(u), t, x, j, dfdt);
@@ -626,7 +747,7 @@ inline run_result run_rosenbrock4(const problem& pb, double rtol) {
   r.steps = res.steps;
   r.newton = 0;            // linearly implicit: no Newton iterations (4 linear solves per step)
   r.fact = res.jacobians;  // one Jacobian and LU per attempted step
-  r.y = Eigen::Map<Eigen::VectorXd>(y.data(), n2);
+  r.y = peer_result(pb, y.data());
   return r;
 }
 #endif
@@ -649,6 +770,11 @@ struct bench {
   std::ofstream csv;
   int rows = 0;
 
+  /// Error of a result (compared state) against the current reference.
+  double error_of(const problem& pb, const Eigen::VectorXd& y) const {
+    return pb.error ? pb.error(y, ref) : state_error(y, ref, scale);
+  }
+
   /// Warm-up, then the minimum CPU time of 3 runs (smoke: one run, no warm-up).
   template <class F>
   void measure(const problem& pb, const std::string& solver, const std::string& method, const std::string& setting,
@@ -663,7 +789,7 @@ struct bench {
       best = std::min(best, cpu_now() - t0);
       if (best > 20) break;  // a very slow point: one timing is enough
     }
-    const double err = r.ok ? state_error(r.y, ref, scale) : 1e300;
+    const double err = r.ok ? error_of(pb, r.y) : 1e300;
     csv << pb.name << ',' << solver << ',' << method << ',' << setting << ',' << err << ',' << best << ','
         << r.steps << ',' << r.newton << ',' << r.fact << '\n';
     csv.flush();
@@ -683,9 +809,12 @@ struct bench {
       measure(pb, "pradis", method, s, [&] { return run_pradis(pb, scheme, {.error_control = true, .tol = tol}); });
     }
     if (!fixed) return;
-    // Fixed-step sweep: h from 1e-2 (pendulum, fpu) / 2e-3 (twobody) / 1e-3 (stiff)
-    // down by factors of 4.
-    const double h0 = pb.name == "stiff" ? 1e-3 : (pb.name == "twobody" ? 2e-3 : 1e-2);
+    // Fixed-step sweep: h from 1e-2 (pendulum, fpu) / 2e-3 (twobody, top) / 1e-3
+    // (stiff) / 1e-1 (freebody) down by factors of 4.
+    const double h0 = pb.name == "stiff"                         ? 1e-3
+                      : (pb.name == "twobody" || pb.name == "top") ? 2e-3
+                      : pb.name == "freebody"                      ? 1e-1
+                                                                   : 1e-2;
     const int nh = smoke ? 1 : (pb.name == "stiff" ? 4 : 5);
     for (int k = 0; k < nh; ++k) {
       const double h = h0 / std::pow(4.0, k);
@@ -714,26 +843,34 @@ struct bench {
     }
   }
 
-  /// Checks the twobody reference (RK4, h = 1e-5) against RK4 with h = 2e-5, IDA
-  /// at 1e-12 and the pradis model under fixed-step Newmark extrapolated from
-  /// h = 2e-5 and 1e-5 (error O(h^2), so (4 y(h/2) - y(h)) / 3 is O(h^4) for this
-  /// smooth motion). Returns false if two of them differ by more than 1e-8 (the
-  /// smallest errors plotted for this problem are about 1e-9 .. 1e-7).
-  bool check_twobody_reference(const problem& pb) {
-    const double rk_half = state_error(rk4_reference(pb, 2e-5), ref, scale);
-    const run_result p1 = run_pradis(pb, pradis::newmark{}, {.error_control = false, .h = 2e-5});
-    const run_result p2 = run_pradis(pb, pradis::newmark{}, {.error_control = false, .h = 1e-5});
+  /// Checks a reference computed by RK4 with step h_rk (twobody, freebody, top)
+  /// against RK4 with 2 h_rk, IDA at 1e-12 and the pradis model under fixed-step
+  /// Newmark extrapolated from steps 2 h_p and h_p (error O(h^2), so
+  /// (4 y(h/2) - y(h)) / 3 is O(h^4) for these smooth motions). Returns false if one
+  /// of them differs from the reference by more than 1e-8 (the smallest errors
+  /// plotted for these problems are about 1e-9 .. 1e-7).
+  bool check_reference(const problem& pb, double h_rk, double h_p) {
+    const double rk_half = error_of(pb, rk4_reference(pb, 2 * h_rk));
+    const run_result p1 = run_pradis(pb, pradis::newmark{}, {.error_control = false, .h = 2 * h_p});
+    const run_result p2 = run_pradis(pb, pradis::newmark{}, {.error_control = false, .h = h_p});
     const Eigen::VectorXd extrapolated = (4 * p2.y - p1.y) / 3;
-    const double pr = state_error(extrapolated, ref, scale);
+    const double pr = error_of(pb, extrapolated);
     double worst = std::max(rk_half, pr);
-    std::printf("twobody reference (RK4 h=1e-5): vs RK4 h=2e-5 %.2e, vs pradis Newmark extrapolated %.2e "
-                "(h=1e-5 alone %.2e)",
-                rk_half, pr, state_error(p2.y, ref, scale));
+    std::printf("%s reference (RK4 h=%.0e): vs RK4 h=%.0e %.2e, vs pradis Newmark extrapolated %.2e "
+                "(h=%.0e alone %.2e)",
+                pb.name.c_str(), h_rk, 2 * h_rk, rk_half, pr, h_p, error_of(pb, p2.y));
 #ifdef PRADIS_WP_SUNDIALS
-    const double ida = state_error(run_ida(pb, 1e-12).y, ref, scale);
+    const double ida = error_of(pb, run_ida(pb, 1e-12).y);
     worst = std::max(worst, ida);
     std::printf(", vs IDA 1e-12 %.2e", ida);
 #endif
+    if (pb.name == "freebody") {
+      // Exact after one period: omega_b(T) = omega_b(0).
+      const rigid::vec3 w0 = rigid::hlw_omega0();
+      const double ew = (ref.tail<3>() - w0).cwiseAbs().maxCoeff() / w0.cwiseAbs().maxCoeff();
+      worst = std::max(worst, ew);
+      std::printf(", omega_b(T) vs exact omega_b(0) %.2e", ew);
+    }
     std::printf("\n");
     return p1.ok && p2.ok && worst < 1e-8;
   }
@@ -744,12 +881,19 @@ struct bench {
     chain.exact = [&chain] { return rk4_reference(chain, 1e-5); };
     problem tb = twobody();
     tb.exact = [&tb] { return rk4_reference(tb, 1e-5); };
-    for (const problem& pb : {pendulum(), tb, stiff(), chain}) {
+    problem fb = freebody();
+    fb.exact = [&fb] { return rk4_reference(fb, 1e-4); };
+    problem tp = top();
+    tp.exact = [&tp] { return rk4_reference(tp, 1e-5); };
+    for (const problem& pb : {pendulum(), tb, stiff(), chain, fb, tp}) {
       if (!only.empty() && pb.name != only) continue;
       ref = pb.exact();
       scale = pb.error_scale ? pb.error_scale(ref) : ref;
-      if (pb.name == "twobody" && !smoke && !check_twobody_reference(pb)) {
-        std::fprintf(stderr, "twobody: the reference does not agree with the other methods to 1e-8\n");
+      // The RK4 references, checked (h_rk as above; Newmark steps 2 h_p, h_p).
+      const double h_rk = pb.name == "freebody" ? 1e-4 : 1e-5, h_p = pb.name == "freebody" ? 5e-4 : 1e-5;
+      if ((pb.name == "twobody" || pb.name == "freebody" || pb.name == "top") && !smoke &&
+          !check_reference(pb, h_rk, h_p)) {
+        std::fprintf(stderr, "%s: the reference does not agree with the other methods to 1e-8\n", pb.name.c_str());
         return false;
       }
       pradis_sweeps(pb, pradis::stoermer{}, "Stoermer", true);
@@ -774,7 +918,7 @@ int main(int argc, char** argv) {
     else if (a == "--out" && i + 1 < argc) out = argv[++i];
     else if (a == "--only" && i + 1 < argc) b.only = argv[++i];
     else {
-      std::cerr << "usage: work_precision [--smoke] [--out FILE] [--only pendulum|twobody|stiff|fpu]\n";
+      std::cerr << "usage: work_precision [--smoke] [--out FILE] [--only pendulum|twobody|stiff|fpu|freebody|top]\n";
       return 2;
     }
   }

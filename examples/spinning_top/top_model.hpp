@@ -31,6 +31,9 @@ struct spinning_top {
   std::vector<pradis::dof> x;  ///< the centre of mass
   pradis::rotation_node r;     ///< the top's orientation
 
+  /// Damping of the joint's stiff mode, 0.4 sqrt(k m) (a damping ratio of 0.2) [N s/m].
+  double joint_damping() const { return 0.4 * std::sqrt(k * mass); }
+
   /// The axis (body Z) at the start, after the tilt about X.
   pradis::spatial::vec3 axis0() const { return {0, -std::sin(theta0), std::cos(theta0)}; }
 
@@ -43,7 +46,7 @@ struct spinning_top {
     m.add<rigid_body>("top", {mass, j1, j1, j3, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
     // Joint point A: the origin (ground); B: the tip, l below the centre of mass along body Z.
     m.add<spherical_joint>("tip", {{0, 0, 0, 0, 0, 0, l * a.x(), l * a.y(), l * a.z(), 0, 0, -l}, k,
-                                   0.4 * std::sqrt(k * mass)},
+                                   joint_damping()},
                            G, G, G, G, G, G, x[0], x[1], x[2], r);
     m.add<spatial_force>("gravity", {0, 0, -mass * g, 0, 0, 0, 0, 0}, x[0], x[1], x[2]);
     m.add<initial_rotation>("start", {1, 0, 0, theta0 * 180 / std::numbers::pi, w3 * a.x(), w3 * a.y(), w3 * a.z()},

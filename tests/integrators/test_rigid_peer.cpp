@@ -1,0 +1,170 @@
+// The work-precision benchmark's peers (SUNDIALS IDA/CVODE, Boost.Odeint) integrate
+// the 3D problems (the torque-free HLW body and the heavy top of
+// examples/spinning_top) as first-order ODEs in (x, x', q, omega_b) written out by
+// hand in bench/work_precision/rigid_body_problems.hpp. For the comparison to be
+// honest they must be pradis's equations: at random states, the motion the peer's
+// right-hand side gives (x'' and omega_b', turned into q' = (1/2) q (x) (omega_b, 0)
+// and q'' = (1/2) (q' (x) (omega_b, 0) + q (x) (omega_b', 0))) must make the residual
+// that pradis assembles from its elements (BODY3, SPH3, F3) vanish, to round-off, in
+// the force rows and the moment rows q1..q3.
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "pradis/assembly/assembler.hpp"
+#include "pradis/integrators/simulation.hpp"
+#include "pradis/spatial/node_state.hpp"
+#include "rigid_body_problems.hpp"
+
+using namespace pradis;
+using pradis::spatial::quaternion;
+using pradis::spatial::vec3;
+
+namespace {
+
+/// Sets u, v, a of a rotational node from q, omega_b and omega_b' (the peer's state).
+void set_rotation(global_state& s, const rotation_node& n, const quaternion& q, const vec3& w, const vec3& wd) {
+  const quaternion qd = wp::rigid::quaternion_rate(q.data(), w);
+  const quaternion qdd = 0.5 * spatial::multiply(qd, quaternion(w.x(), w.y(), w.z(), 0)) +
+                         0.5 * spatial::multiply(q, quaternion(wd.x(), wd.y(), wd.z(), 0));
+  const dof d[4] = {n.q1, n.q2, n.q3, n.q4};
+  for (int i = 0; i < 4; ++i) {
+    s.u(d[i].index) = q(i);
+    s.v(d[i].index) = qd(i);
+    s.a(d[i].index) = qdd(i);
+  }
+}
+
+/// The assembled residual of the rows `rows`, each relative to its sum of absolute
+/// contributions or to `scale`, whichever is larger (the round-off scale): the largest.
+template <class M>
+double largest_relative_residual(assembler<M>& as, const std::vector<dof>& rows, double scale = 0) {
+  double worst = 0;
+  for (const dof& d : rows) {
+    worst = std::max(worst, std::abs(as.residual()(d.index)) / std::max({as.abs_sum()(d.index), scale, 1e-300}));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("bench 3D peer equations: the free body's right-hand side zeroes pradis's assembled residual") {
+  wp::rigid::freebody_model b;
+  simulation sim(b.m, newmark{});
+  sim.run({.end = 1e-4, .smax = 1e-4});  // NEWINT of every element
+  std::vector<char> prescribed(static_cast<std::size_t>(b.m.dof_count()), 0);
+  prescribed[0] = 1;  // the ground
+  assembler<wp::rigid::freebody_model::model_type> as;
+  as.build(b.m, prescribed);
+  std::mt19937 rng(20261122);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), scale(0.95, 1.05);
+  global_state s = sim.state();  // the ground and every DOF not set below as the run left them
+  double worst = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    quaternion q(unit(rng), unit(rng), unit(rng), unit(rng));
+    q *= scale(rng) / q.norm();  // pradis's equations hold for any |q| (near 1); the peer keeps |q|
+    double y[7] = {q(0), q(1), q(2), q(3), 3 * unit(rng), 3 * unit(rng), 3 * unit(rng)}, dy[7];
+    wp::rigid::freebody_rhs(y, dy);
+    // dq/dt of the peer is the kinematic relation itself (checked here once more).
+    const vec3 w(y[4], y[5], y[6]), wd(dy[4], dy[5], dy[6]);
+    const quaternion qd = wp::rigid::quaternion_rate(y, w);
+    for (int i = 0; i < 4; ++i) CHECK(dy[i] == doctest::Approx(qd(i)).epsilon(1e-15));
+    // omega_b = (2/s) G(q) q' (pradis/spatial/quaternion.hpp) for the peer's q'.
+    const vec3 wb = spatial::body_angular_velocity(q, qd);
+    for (int i = 0; i < 3; ++i) CHECK(wb(i) == doctest::Approx(w(i)).epsilon(1e-13));
+    for (const dof& d : b.x) s.u(d.index) = s.v(d.index) = s.a(d.index) = 0;
+    set_rotation(s, b.r, q, w, wd);
+    as.evaluate(b.m, s, {1.0, 0.0, 0.0}, call_info{1.0, 1e-3, 1, 0, true, nullptr});
+    // One element per row: the scale is that of its inertial moment, I (|omega'| + |omega|^2).
+    const double scale = wp::rigid::hlw_inertia.maxCoeff() * (wd.cwiseAbs().maxCoeff() + w.squaredNorm());
+    worst = std::max(worst, largest_relative_residual(as, {b.x[0], b.x[1], b.x[2], b.r.q1, b.r.q2, b.r.q3}, scale));
+  }
+  MESSAGE("free body: largest assembled residual / its scale on the peer's motion: ", worst);
+  CHECK(worst < 1e-13);
+}
+
+TEST_CASE("bench 3D peer equations: the heavy top's right-hand side zeroes pradis's assembled residual") {
+  pradis_examples::spinning_top t;
+  const wp::rigid::top_data d = wp::rigid::top_data::from_example();
+  simulation sim(t.m, newmark{});
+  sim.run({.end = 1e-5, .smax = 1e-5});
+  std::vector<char> prescribed(static_cast<std::size_t>(t.m.dof_count()), 0);
+  prescribed[0] = 1;
+  assembler<pradis_examples::spinning_top::model_type> as;
+  as.build(t.m, prescribed);
+  std::mt19937 rng(20261123);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), scale(0.95, 1.05);
+  global_state s = sim.state();
+  double worst = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    quaternion q(unit(rng), unit(rng), unit(rng), unit(rng));
+    q *= scale(rng) / q.norm();
+    double y[13], dy[13];
+    for (int i = 0; i < 3; ++i) y[i] = 1e-3 * unit(rng), y[3 + i] = 0.1 * unit(rng), y[10 + i] = 30 * unit(rng);
+    for (int i = 0; i < 4; ++i) y[6 + i] = q(i);
+    wp::rigid::top_rhs(d, y, dy);
+    for (int i = 0; i < 3; ++i) {
+      const dof x = t.x[static_cast<std::size_t>(i)];
+      s.u(x.index) = y[i];
+      s.v(x.index) = y[3 + i];
+      s.a(x.index) = dy[3 + i];
+      CHECK(dy[i] == y[3 + i]);
+    }
+    set_rotation(s, t.r, q, vec3(y[10], y[11], y[12]), vec3(dy[10], dy[11], dy[12]));
+    as.evaluate(t.m, s, {1.0, 0.0, 0.0}, call_info{1.0, 1e-3, 1, 0, true, nullptr});
+    worst = std::max(worst, largest_relative_residual(as, {t.x[0], t.x[1], t.x[2], t.r.q1, t.r.q2, t.r.q3}));
+  }
+  MESSAGE("top: largest assembled residual / its scale on the peer's motion: ", worst);
+  CHECK(worst < 1e-12);
+}
+
+TEST_CASE("bench 3D problems: the start of the peers is the start of the pradis models") {
+  // The free body starts at the identity with omega_b = m0 / I, the top tilted by
+  // theta0 about X and spinning at w3 about its axis (ROT0 in both models); the
+  // state at t = 0 is read in the output call of the first run.
+  auto start_of = [](auto& sim, const rotation_node& r, std::vector<dof> x) {
+    Eigen::VectorXd z, v(3);
+    sim.on_output([&](const auto& s) {
+      if (s.time() != 0) return;
+      z = wp::rigid::compare_state(spatial::node_quaternion(s, r), spatial::node_body_angular_velocity(s, r));
+      for (int i = 0; i < 3; ++i) v(i) = s.v(x[static_cast<std::size_t>(i)]);
+    });
+    sim.run({.end = 1e-5, .out = 1e-5, .smax = 1e-5});
+    REQUIRE(z.size() == 7);
+    return std::pair{z, v};
+  };
+  SUBCASE("free body") {
+    wp::rigid::freebody_model b;
+    simulation sim(b.m, newmark{});
+    const auto [z, v] = start_of(sim, b.r, b.x);
+    const Eigen::VectorXd ref = wp::rigid::compare_state(quaternion(0, 0, 0, 1), wp::rigid::hlw_omega0());
+    CHECK(wp::rigid::rotation_error(z, ref) < 1e-14);
+    CHECK(v.norm() == 0.0);
+  }
+  SUBCASE("top") {
+    pradis_examples::spinning_top t;
+    simulation sim(t.m, newmark{});
+    const auto [z, v] = start_of(sim, t.r, t.x);
+    const Eigen::VectorXd y0 = wp::rigid::top_start(wp::rigid::top_data::from_example());
+    const Eigen::VectorXd ref = wp::rigid::compare_state(y0.segment<4>(6), y0.segment<3>(10));
+    CHECK(wp::rigid::rotation_error(z, ref) < 1e-14);
+    CHECK(v.norm() == 0.0);  // y0's x' = 0
+  }
+}
+
+TEST_CASE("bench 3D error measure: rotation angle and relative angular-velocity error") {
+  // A rotation by 1e-9 rad about any axis reads as 1e-9 (no loss near zero), the sign
+  // of q does not matter, and omega_b errors are relative to |omega_ref|_inf.
+  const quaternion q0 = spatial::from_axis_angle(vec3(1, 2, 3), 0.7);
+  const vec3 w(0.5, -2.0, 1.0);
+  const Eigen::VectorXd ref = wp::rigid::compare_state(q0, w);
+  const quaternion dq = spatial::from_axis_angle(vec3(-3, 1, 2), 1e-9);
+  CHECK(wp::rigid::rotation_error(wp::rigid::compare_state(spatial::multiply(q0, dq), w), ref) ==
+        doctest::Approx(1e-9).epsilon(1e-6));
+  CHECK(wp::rigid::rotation_error(wp::rigid::compare_state(-2.0 * q0, w), ref) < 1e-15);
+  CHECK(wp::rigid::rotation_error(wp::rigid::compare_state(q0, w + vec3(0, 0, 1e-6)), ref) ==
+        doctest::Approx(0.5e-6).epsilon(1e-9));
+}
