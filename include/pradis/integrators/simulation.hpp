@@ -37,9 +37,9 @@ namespace pradis {
 
 /// Newton options with PRADIS's names and defaults.
 struct newton_options {
-  double dabsu = 0.01;   ///< DABSU: absolute tolerance on the correction of the unknown (velocity)
+  double dabsu = 0.01;   ///< DABSU: absolute tolerance on the correction of the unknown (velocity), times the DOF's nominal potential (dof_scale)
   double drltu = 1e-3;   ///< DRLTU: relative tolerance on the correction
-  double dabsi = 0.1;    ///< DABSI: absolute tolerance on the residual (sum of flows) per DOF
+  double dabsi = 0.1;    ///< DABSI: absolute tolerance on the residual (sum of flows) per DOF, times its nominal flow (dof_scale)
   double drlti = 1e-3;   ///< DRLTI: relative tolerance on the residual, times the sum of |flows| on the DOF
   int itr = 5;           ///< ITR: maximum Newton iterations per step
   bool second = false;   ///< SECOND: force at least a second iteration
@@ -57,7 +57,7 @@ struct run_options {
   /// fails). true: PRADIS's velocity-based local error estimate and three-branch
   /// step rule; the first stage starts with steps of SMIN and grows.
   bool error_control = false;
-  double dabsx = 0.1;        ///< DABSX: absolute tolerance of the local error (velocity units)
+  double dabsx = 0.1;        ///< DABSX: absolute tolerance of the local error (velocity units), times the DOF's nominal potential
   double drltx = 1e-3;       ///< DRLTX: relative tolerance of the local error, times |v|
   bool predict = false;      ///< PREDICT: linear prediction of the acceleration in the error predictor
   double control = 0.0;      ///< CONTROL: no error-driven step reduction below this step (0: none)
@@ -699,6 +699,7 @@ class simulation<model<Es...>, Scheme, Solver> {
       scheme_.complete(s0_.u(d), s0_.v(d), s0_.a(d), s0_.p(d), h, s_.v(d), s_.u(d), s_.a(d), s_.p(d));
     }
     const jacobian_coefficients c = scheme_.coefficients(h);
+    const auto& scale = m_.scales();  // per-DOF nominal potential and flow (core/domain.hpp)
     bool correction_ok = false, roundoff = false;
     last_failure_.reset();
     try {
@@ -707,7 +708,8 @@ class simulation<model<Es...>, Scheme, Solver> {
         bool residual_ok = true;
         for (int i = 0; i < ne && residual_ok; ++i) {
           const auto d = asm_.dof_of(i);
-          residual_ok = std::abs(asm_.residual()(d)) <= nw.dabsi + nw.drlti * asm_.abs_sum()(d);
+          residual_ok = std::abs(asm_.residual()(d)) <=
+                        nw.dabsi * scale[static_cast<std::size_t>(d)].flow + nw.drlti * asm_.abs_sum()(d);
         }
         // Converged: both PRADIS tests pass; or, after at least two corrections,
         // the last correction was at round-off level: neither the unknown nor the
@@ -743,7 +745,8 @@ class simulation<model<Es...>, Scheme, Solver> {
           const double dv = rhs_[static_cast<std::size_t>(i)];
           finite = finite && std::isfinite(dv);
           s_.v(d) += dv;
-          correction_ok = correction_ok && std::abs(dv) <= nw.dabsu + nw.drltu * std::abs(s_.v(d));
+          correction_ok = correction_ok && std::abs(dv) <= nw.dabsu * scale[static_cast<std::size_t>(d)].potential +
+                                                               nw.drltu * std::abs(s_.v(d));
           roundoff = roundoff && std::abs(dv) <= 64 * std::numeric_limits<double>::epsilon() *
                                                      (std::abs(s_.v(d)) + std::abs(s0_.v(d)) +
                                                       h * (std::abs(s_.a(d)) + std::abs(s0_.a(d))));
@@ -785,7 +788,7 @@ class simulation<model<Es...>, Scheme, Solver> {
         if (opt_.predict && h_prev_ > 0 && a_prev_.size() == s0_.a.size()) ap += (s0_.a(d) - a_prev_(d)) * h / h_prev_;
         lp = 0.5 * std::abs(s0_.v(d) + h * ap - s_.v(d));
       }
-      const double tol = opt_.dabsx + opt_.drltx * std::abs(s_.v(d));
+      const double tol = opt_.dabsx * m_.scales()[static_cast<std::size_t>(d)].potential + opt_.drltx * std::abs(s_.v(d));
       if (lp > 0 && tol / lp < r) {
         r = tol / lp;
         worst = d;

@@ -19,6 +19,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "pradis/core/domain.hpp"
 #include "pradis/core/element.hpp"
 #include "pradis/core/error.hpp"
 #include "pradis/core/type_list.hpp"
@@ -99,15 +100,21 @@ class model {
   /// The element types of this model.
   using element_types = type_list<Es...>;
 
-  model() { dof_names_.push_back("ground"); }
+  model() { add_dof("ground"); }
 
   /// The ground DOF (index 0), fixed at zero displacement.
   static constexpr dof ground() noexcept { return dof{0}; }
 
-  /// Adds a DOF; the name is used in messages and outputs (default "dof N").
-  dof add_dof(std::string name = {}) {
+  /// Adds a DOF; the name is used in messages and outputs (default "dof N"). The
+  /// domain sets its nominal magnitudes (default_scale); an unspecified DOF takes the
+  /// domain of the first element that declares one for it (core/domain.hpp).
+  dof add_dof(std::string name = {}, domain dom = domain::unspecified) {
     const int i = static_cast<int>(dof_names_.size());
     dof_names_.push_back(name.empty() ? "dof " + std::to_string(i) : std::move(name));
+    dof_domains_.push_back(dom);
+    dof_scales_.push_back(default_scale(dom));
+    scale_fixed_.push_back(0);
+    domain_by_.emplace_back();
     return dof{i};
   }
   /// Adds `count` DOFs and returns them.
@@ -122,6 +129,23 @@ class model {
   int dof_count() const noexcept { return static_cast<int>(dof_names_.size()); }
   /// Name of a DOF.
   const std::string& dof_name(int i) const { return dof_names_.at(static_cast<std::size_t>(i)); }
+  /// Physical domain of a DOF (unspecified until an element or add_dof declares one).
+  domain dof_domain(dof d) const { return dof_domains_.at(checked_dof(d, "dof_domain")); }
+  /// Nominal magnitudes of a DOF, which scale the absolute tolerances (core/domain.hpp).
+  const dof_scale& scale(dof d) const { return dof_scales_.at(checked_dof(d, "scale")); }
+  /// Nominal magnitudes of all DOFs, indexed by DOF (what the integrator reads).
+  const std::vector<dof_scale>& scales() const noexcept { return dof_scales_; }
+  /// Sets the nominal magnitudes of a DOF (e.g. a hydraulic line whose flows are
+  /// litres per hour). They then stay as set, whatever domain elements declare. Both
+  /// must be finite and > 0 (else invalid_option).
+  void set_scale(dof d, dof_scale s) {
+    const std::size_t i = checked_dof(d, "set_scale");
+    if (!s.valid())
+      throw error(error_code::invalid_option, "nominal potential and flow of DOF '" + dof_names_[i] +
+                                                  "' must be finite and > 0");
+    dof_scales_[i] = s;
+    scale_fixed_[i] = 1;
+  }
 
   /// Adds a spatial rotational node with three new external DOFs `<name>.q1`,
   /// `<name>.q2`, `<name>.q3` and the hidden `<name>.q4` (initialised to 1 at the zero step).
@@ -348,6 +372,7 @@ class model {
                     std::string(p.name), name);
       in.dofs[k] = d[k].index;
     }
+    check_domains<E>(in.dofs, name);
     constexpr auto slots = element_traits<E>::rotation_nodes;
     for (int k = 0; k < p.ent; ++k) {
       int hidden = -1;
@@ -367,6 +392,7 @@ class model {
     in.state_size = static_cast<std::size_t>(p.state_size(npar));
     old_state_.resize(old_state_.size() + in.state_size, 0.0);
     new_state_.resize(old_state_.size(), 0.0);
+    apply_domains<E>(in.dofs, name);
     auto& v = instances<E>();
     v.push_back(std::move(in));
     const int idx = static_cast<int>(v.size()) - 1;
@@ -381,6 +407,38 @@ class model {
   template <class E>
   element_ref<E> place(std::string name, E e, std::span<const dof> d, int npar) {
     return place_impl<E, std::dynamic_extent>(std::move(name), std::move(e), d, npar);
+  }
+
+  std::size_t checked_dof(dof d, const char* what) const {
+    if (d.index < 0 || d.index >= dof_count())
+      throw error(error_code::invalid_model,
+                  std::string(what) + ": DOF " + std::to_string(d.index) + " does not exist in this model");
+    return static_cast<std::size_t>(d.index);
+  }
+  /// A DOF of one domain connected to an element slot of another is code 110.
+  template <class E, std::size_t N>
+  void check_domains(const std::array<int, N>& dofs, const std::string& name) const {
+    for (int k = 0; k < E::passport.ext; ++k) {
+      const auto d = static_cast<std::size_t>(dofs[static_cast<std::size_t>(k)]);
+      const domain want = declared_domain<E>(k), have = dof_domains_[d];
+      if (d == 0 || want == domain::unspecified || have == domain::unspecified || have == want) continue;
+      throw error(error_code::invalid_model,
+                  "DOF '" + dof_names_[d] + "' is " + std::string(to_string(have)) +
+                      (domain_by_[d].empty() ? std::string() : " (set by " + domain_by_[d] + ")") + ", but connection " +
+                      std::to_string(k + 1) + " of this element is " + std::string(to_string(want)),
+                  std::string(E::passport.name), name);
+    }
+  }
+  template <class E, std::size_t N>
+  void apply_domains(const std::array<int, N>& dofs, const std::string& name) {
+    for (std::size_t k = 0; k < N; ++k) {
+      const auto d = static_cast<std::size_t>(dofs[k]);
+      const domain want = declared_domain<E>(static_cast<int>(k));
+      if (d == 0 || want == domain::unspecified || dof_domains_[d] != domain::unspecified) continue;
+      dof_domains_[d] = want;
+      domain_by_[d] = std::string(E::passport.name) + " '" + name + "'";
+      if (!scale_fixed_[d]) dof_scales_[d] = default_scale(want);
+    }
   }
 
   /// Refuses a triple with a repeated non-ground DOF (code 110).
@@ -444,6 +502,10 @@ class model {
   std::unordered_map<int, std::pair<int, int>> rotation_role_;  // external DOF -> (node, component)
   int ground_rotation_node_ = -1;
   std::vector<std::string> dof_names_;
+  std::vector<domain> dof_domains_;
+  std::vector<dof_scale> dof_scales_;
+  std::vector<char> scale_fixed_;         // 1: set by set_scale, kept whatever elements declare
+  std::vector<std::string> domain_by_;    // the element that set the DOF's domain (messages)
   std::tuple<std::vector<element_instance<Es>>...> instances_;
   std::unordered_map<std::string, instance_location> by_name_;
   std::vector<double> work_, old_state_, new_state_;
