@@ -6,6 +6,13 @@
 /// needs only some types lists just those in its own pradis::model<...>.
 
 #include "pradis/core/type_list.hpp"
+#include "pradis/elements/hydraulic/accumulator.hpp"
+#include "pradis/elements/hydraulic/cylinder.hpp"
+#include "pradis/elements/hydraulic/line.hpp"
+#include "pradis/elements/hydraulic/machines.hpp"
+#include "pradis/elements/hydraulic/orifices.hpp"
+#include "pradis/elements/hydraulic/valves.hpp"
+#include "pradis/elements/hydraulic/volume.hpp"
 #include "pradis/elements/mech1d/forces.hpp"
 #include "pradis/elements/mech1d/initial_conditions.hpp"
 #include "pradis/elements/mech1d/linear_damper.hpp"
@@ -43,9 +50,13 @@ using spatial_connector_elements =
 // --- end of spatial connecting elements ---
 /// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md).
 using beam_elements = type_list<elastic_beam, beam_inertia>;
+/// Hydraulics (docs/domains.md): pressure is the velocity-level unknown, volume flow the flow.
+using hydraulic_elements =
+    type_list<hydraulic_volume, laminar_orifice, turbulent_orifice, hydraulic_line, hydraulic_pump, hydraulic_motor,
+              hydraulic_cylinder, valve_22, valve_43, relief_valve, check_valve, accumulator>;
 /// Every element type of the built-in library.
-using library_elements =
-    concat_t<mech1d_elements, planar_elements, spatial_elements, spatial_connector_elements, beam_elements>;
+using library_elements = concat_t<mech1d_elements, planar_elements, spatial_elements, spatial_connector_elements,
+                                  beam_elements, hydraulic_elements>;
 
 }  // namespace pradis::elements
 
