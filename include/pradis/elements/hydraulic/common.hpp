@@ -49,13 +49,21 @@ struct ramp {
   }
 };
 
-/// C1 clamp of s to [0, 1]: ramp(s) - ramp(s - 1) with corner width w (w <= 1/2); value and slope.
+/// C1 clamp of s to [0, 1] with rounded corners inside the interval (0 < w < 1/4); value and slope:
+///   c(s) = (ramp(s - w) - ramp(s - 1 + w)) / (1 - 2 w),
+/// exactly 0 for s <= 0, exactly 1 for s >= 1, c(1/2) = 1/2, linear with slope 1 / (1 - 2 w)
+/// on [2 w, 1 - 2 w].
 struct clamp01 {
   double value = 0, slope = 0;
   clamp01(double s, double w) {
-    const ramp a(s, w), b(s - 1, w);
-    value = a.value - b.value;
-    slope = a.slope - b.slope;
+    if (s <= 0) return;
+    if (s >= 1) {
+      value = 1;
+      return;
+    }
+    const ramp a(s - w, w), b(s - 1 + w, w);
+    value = (a.value - b.value) / (1 - 2 * w);
+    slope = (a.slope - b.slope) / (1 - 2 * w);
   }
 };
 

@@ -5,8 +5,10 @@
 /// with the regularised root of HORT, q = Cd a sqrt(2/rho) r(dp), r(dp) = dp / (dp^2 + dpt^2)^(1/4),
 /// and an opening area a = Al + Amax y between the leakage area Al and Al + Amax.
 /// The opening y = c(s) is the C1 clamp of the normalised stroke s to [0, 1] with rounded
-/// corners of width 0.02 (docs/domains.md):
-///   c(s) = ramp(s) - ramp(s - 1),  ramp(s) = 0 (s <= -w), (s + w)^2 / (4 w) (|s| < w), s (s >= w).
+/// corners inside the interval, w = 0.02 (docs/domains.md):
+///   c(s) = (ramp(s - w) - ramp(s - 1 + w)) / (1 - 2 w),
+///   ramp(z) = 0 (z <= -w), (z + w)^2 / (4 w) (|z| < w), z (z >= w);
+/// exactly 0 (closed: leakage only) for s <= 0 and 1 for s >= 1, c(1/2) = 1/2.
 /// The spool of HV22 and HV43 is an external mechanical DOF (its displacement is the spool
 /// position; the valve exerts no force on it): drive it by XSRC, or model the spool
 /// dynamics with mechanical elements, e.g. a first-order lag tau x' + x = xc as SPRING k
