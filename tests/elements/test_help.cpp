@@ -31,6 +31,15 @@ constexpr std::string_view code100_situation(std::string_view name) {
   if (name == "REV3") return "kr <= 0";
   if (name == "SHC3") return "the axis is zero, k <= 0, c < 0";
   if (name == "BEAM3" || name == "BEAMI3") return "coincide";
+  if (name == "HVOL") return "V, B, pa or n is not positive";
+  if (name == "HORL") return "R is not positive";
+  if (name == "HORT") return "Cd, A, rho or dpt is not positive";
+  if (name == "HLINE") return "a parameter is not positive";
+  if (name == "HPUMP" || name == "HMOTOR") return "D is not positive";
+  if (name == "HCYL") return "an area, the stroke, a dead volume, B or w is not positive";
+  if (name == "HV22" || name == "HV43") return "Cd, Amax, rho, dpt or xmax is not positive";
+  if (name == "HRELIEF" || name == "HCHECK") return "Cd, Amax, rho, dpt or dpo is not positive";
+  if (name == "HACC") return "a parameter is not positive";
   return "";
 }
 
@@ -45,7 +54,8 @@ void check_special() {
   CHECK(special.find(code100_situation(name)) != std::string::npos);
   if (name == "XSRC" || name == "VSRC" || name == "X0" || name == "V0") CHECK(special.find("code 90") != std::string::npos);
   if (name == "LINKD" || name == "BODY3" || name == "F3B" || name == "M3B" || name == "SD3" || name == "RSD3" ||
-      name == "SPH3" || name == "REV3" || name == "BEAM3" || name == "BEAMI3" || name == "SHC3")
+      name == "SPH3" || name == "REV3" || name == "BEAM3" || name == "BEAMI3" || name == "SHC3" || name == "HVOL" ||
+      name == "HCYL" || name == "HACC")
     CHECK(special.find("code 75") != std::string::npos);
   if (name == "ROT0") CHECK(special.find("code 90") != std::string::npos);
 }
@@ -59,7 +69,7 @@ void check_all_special(pradis::type_list<Es...>) {
 
 TEST_SUITE("elements/help") {
   TEST_CASE("the help text of every library element names its code-100 situations (and 90 / 75 where they apply)") {
-    static_assert(pradis::elements::library_elements::size == 25);
+    static_assert(pradis::elements::library_elements::size == 37);
     check_all_special(pradis::elements::library_elements{});
   }
 }

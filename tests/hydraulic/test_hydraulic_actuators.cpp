@@ -154,6 +154,34 @@ TEST_SUITE("hydraulic/HV22") {
   }
 }
 
+TEST_SUITE("hydraulic/spool lag") {
+  TEST_CASE("a spool behind SPRING k and DAMPER k tau follows a command step as a first-order lag") {
+    // docs/domains.md: k (xc - x) = k tau x', so x = xc (1 - exp(-t / tau)); trapezoidal rule:
+    // x_n = xc (1 - rho^n), rho = (1 - h / (2 tau)) / (1 + h / (2 tau)). The valve opening
+    // follows as c(x / xmax) with c linear (slope 1 / 0.96) between 4 % and 96 % of the stroke.
+    const double xmax = 1e-3, xc = 0.5e-3, k = 1e3, tau = 0.01, h = 1e-3;
+    const double x = h / (2 * tau), rho = (1 - x) / (1 + x);
+    model<valve_22, linear_spring, linear_damper, displacement_source, velocity_source> md;
+    const dof p = md.add_dof("p"), spool = md.add_dof("spool"), cmd = md.add_dof("command");
+    md.add<valve_22>("valve", {0.7, 1e-5, oil_rho, 1e3, xmax, 0.0}, p, md.ground(), spool);
+    md.add<linear_spring>("lag spring", {k}, cmd, spool);
+    md.add<linear_damper>("lag damper", {k * tau}, spool, md.ground());
+    md.add<displacement_source>("command", {.offset = xc}, cmd);
+    md.add<velocity_source>("supply", {.offset = 10e5}, p);
+    simulation sim(md);
+    double worst = 0;
+    long n = 0;
+    sim.on_output([&](const auto& s) {
+      worst = std::max(worst, std::abs(s.u(spool) - xc * (1 - std::pow(rho, static_cast<double>(n)))) / xc);
+      ++n;
+    });
+    sim.run(fixed_step(0.1, h));
+    CHECK(n == 101);
+    CHECK(worst < 1e-10);
+    CHECK(md.work("valve")[1] == doctest::Approx(0.5 + (sim.u(spool) / xmax - 0.5) / 0.96).epsilon(1e-12));
+  }
+}
+
 TEST_SUITE("hydraulic/HRELIEF") {
   TEST_CASE("a pump feeding a relief valve settles where the valve passes the pump flow") {
     // Steady state: D w = q(p) of the documented characteristic (monotone in p), found here by
