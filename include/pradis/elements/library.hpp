@@ -6,6 +6,10 @@
 /// needs only some types lists just those in its own pradis::model<...>.
 
 #include "pradis/core/type_list.hpp"
+#include "pradis/elements/electric/dc_motor.hpp"
+#include "pradis/elements/electric/passive.hpp"
+#include "pradis/elements/electric/semiconductors.hpp"
+#include "pradis/elements/electric/sources.hpp"
 #include "pradis/elements/mech1d/forces.hpp"
 #include "pradis/elements/mech1d/initial_conditions.hpp"
 #include "pradis/elements/mech1d/linear_damper.hpp"
@@ -43,9 +47,14 @@ using spatial_connector_elements =
 // --- end of spatial connecting elements ---
 /// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md).
 using beam_elements = type_list<elastic_beam, beam_inertia>;
+/// Electric circuits and electromechanics (docs/domains-electric-pneumatic.md).
+using electric_elements =
+    type_list<resistor, capacitor, inductor, current_dc, current_sine, current_table, voltage_dc, voltage_sine,
+              voltage_table, floating_voltage_dc, floating_voltage_sine, floating_voltage_table, diode, time_switch,
+              dc_motor>;
 /// Every element type of the built-in library.
-using library_elements =
-    concat_t<mech1d_elements, planar_elements, spatial_elements, spatial_connector_elements, beam_elements>;
+using library_elements = concat_t<mech1d_elements, planar_elements, spatial_elements, spatial_connector_elements,
+                                  beam_elements, electric_elements>;
 
 }  // namespace pradis::elements
 
