@@ -36,7 +36,9 @@ struct diode {
                     "5 - minimum parallel conductance Gmin [S] (>= 0)",
       .work = "1 - current i from anode to cathode [A]\n2 - voltage vd = v1 - v2 [V]",
       .special = "code 100 if a parameter is outside its range or not finite. Above Vmax the characteristic is "
-                 "the tangent of the exponential at Vmax: choose Vmax above the forward voltages of the circuit"};
+                 "the tangent of the exponential at Vmax: choose Vmax above the forward voltages of the circuit. Newton "
+                 "descends the exponential by about n Vt per iteration: a diode node without capacitance may need "
+                 "more iterations than ITR = 5 from a far start"};
   struct parameters {
     double is = 1e-14;     ///< saturation current [A]
     double n = 1;          ///< emission coefficient
