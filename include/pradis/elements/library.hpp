@@ -17,6 +17,8 @@
 #include "pradis/elements/mech1d/point_mass.hpp"
 #include "pradis/elements/mech1d/sources.hpp"
 #include "pradis/elements/planar/eccentric_mass.hpp"
+#include "pradis/elements/pneumatic/chambers.hpp"
+#include "pradis/elements/pneumatic/orifice.hpp"
 #include "pradis/elements/planar/planar_inertia.hpp"
 #include "pradis/elements/planar/planar_link.hpp"
 #include "pradis/elements/spatial/beam.hpp"
@@ -52,9 +54,12 @@ using electric_elements =
     type_list<resistor, capacitor, inductor, current_dc, current_sine, current_table, voltage_dc, voltage_sine,
               voltage_table, floating_voltage_dc, floating_voltage_sine, floating_voltage_table, diode, time_switch,
               dc_motor>;
+/// Pneumatics: gauge pressures and mass flows (docs/domains-electric-pneumatic.md).
+using pneumatic_elements = type_list<gas_chamber, gas_piston_chamber, pneumatic_cylinder, pneumatic_orifice,
+                                     pneumatic_pressure_source, pneumatic_flow_source>;
 /// Every element type of the built-in library.
 using library_elements = concat_t<mech1d_elements, planar_elements, spatial_elements, spatial_connector_elements,
-                                  beam_elements, electric_elements>;
+                                  beam_elements, electric_elements, pneumatic_elements>;
 
 }  // namespace pradis::elements
 
