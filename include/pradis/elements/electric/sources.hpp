@@ -23,10 +23,6 @@ inline constexpr std::string_view current_work = "1 - current I(t) delivered int
 inline constexpr std::string_view floating_dofs = "1 - positive node (+) [V]\n2 - negative node (-) [V]";
 inline constexpr std::string_view floating_work = "1 - current delivered into node 1 (out of the + terminal) [A]\n"
                                                   "2 - source voltage V(t) = v1 - v2 [V]";
-inline constexpr std::string_view floating_special =
-    "code 100 for a bad parameter (see the parameters); the current is an internal DOF with a constraint equation "
-    "of zero diagonal (factorised by static pivoting); two voltage sources in a loop, or a source shorted by a "
-    "wire, make the system singular (code 75 / singular matrix)";
 inline constexpr std::string_view sine_parameters = "1 - amplitude A\n2 - frequency f [Hz] (>= 0)\n3 - phase [deg]\n"
                                                     "4 - constant part Y0";
 inline constexpr std::string_view table_parameters = "1 - time t1 [s]\n2 - value y1\n3 - time t2 [s] (> t1)\n"
@@ -126,7 +122,9 @@ struct vdc2 {
                                      .dofs = detail::floating_dofs,
                                      .parameters = "1 - voltage V0 [V]",
                                      .work = detail::floating_work,
-                                     .special = detail::floating_special};
+                                     .special = "code 100 if V0 is not finite. The current is an internal DOF whose "
+                                                "constraint row has a zero diagonal (factorised by static pivoting); "
+                                                "a loop of ideal voltage sources is singular"};
   static constant_wave::parameters example() { return {9.0}; }
 };
 struct vsin2 {
@@ -138,7 +136,10 @@ struct vsin2 {
                                      .dofs = detail::floating_dofs,
                                      .parameters = detail::sine_parameters,
                                      .work = detail::floating_work,
-                                     .special = detail::floating_special};
+                                     .special = "code 100 if f < 0 or a parameter is not finite; recommends a step of "
+                                                "at most 1/(20 f). The current is an internal DOF whose constraint "
+                                                "row has a zero diagonal (factorised by static pivoting); a loop of "
+                                                "ideal voltage sources is singular. Units of A and Y0: [V]"};
   static sine_wave::parameters example() { return {3.0, 2.0, 45.0, 1.0}; }
 };
 struct vtab2 {
@@ -150,7 +151,10 @@ struct vtab2 {
                                      .dofs = detail::floating_dofs,
                                      .parameters = detail::table_parameters,
                                      .work = detail::floating_work,
-                                     .special = detail::floating_special};
+                                     .special = "code 100 if the count is not even, a value is not finite or the "
+                                                "times do not increase strictly. The current is an internal DOF "
+                                                "whose constraint row has a zero diagonal (factorised by static "
+                                                "pivoting); a loop of ideal voltage sources is singular"};
   static table_wave::parameters example() { return {{0.0, 1.0, 1.0, 5.0, 2.0, -2.0}}; }
 };
 }  // namespace electric_source_text
