@@ -40,6 +40,16 @@ constexpr std::string_view code100_situation(std::string_view name) {
   if (name == "HV22" || name == "HV43") return "Cd, Amax, rho, dpt or xmax is not positive";
   if (name == "HRELIEF" || name == "HCHECK") return "Cd, Amax, rho, dpt or dpo is not positive";
   if (name == "HACC") return "a parameter is not positive";
+  if (name == "R") return "R <= 0";
+  if (name == "C") return "C <= 0";
+  if (name == "L") return "L <= 0";
+  if (name == "IDC" || name == "VDC" || name == "VDC2" || name == "PNSRC" || name == "PNQ") return "not finite";
+  if (name == "ISIN" || name == "VSIN" || name == "VSIN2") return "f < 0";
+  if (name == "ITAB" || name == "VTAB" || name == "VTAB2") return "the count is not even";
+  if (name == "D" || name == "PNVOL" || name == "PNCHP" || name == "PNCYL" || name == "PNORF")
+    return "outside its range";
+  if (name == "SW") return "t2 < t1 + tau";
+  if (name == "DCM") return "both are zero";
   return "";
 }
 
@@ -52,10 +62,12 @@ void check_special() {
   REQUIRE_FALSE(code100_situation(name).empty());  // a new element needs its line in this table
   CHECK(special.find("code 100") != std::string::npos);
   CHECK(special.find(code100_situation(name)) != std::string::npos);
-  if (name == "XSRC" || name == "VSRC" || name == "X0" || name == "V0") CHECK(special.find("code 90") != std::string::npos);
+  if (name == "XSRC" || name == "VSRC" || name == "X0" || name == "V0" || name == "VDC" || name == "VSIN" ||
+      name == "VTAB" || name == "PNSRC" || name == "PNVOL" || name == "PNCHP" || name == "PNCYL")
+    CHECK(special.find("code 90") != std::string::npos);
   if (name == "LINKD" || name == "BODY3" || name == "F3B" || name == "M3B" || name == "SD3" || name == "RSD3" ||
       name == "SPH3" || name == "REV3" || name == "BEAM3" || name == "BEAMI3" || name == "SHC3" || name == "HVOL" ||
-      name == "HCYL" || name == "HACC")
+      name == "HCYL" || name == "HACC" || name == "PNVOL" || name == "PNCHP" || name == "PNCYL" || name == "PNORF")
     CHECK(special.find("code 75") != std::string::npos);
   if (name == "ROT0") CHECK(special.find("code 90") != std::string::npos);
 }
@@ -69,7 +81,7 @@ void check_all_special(pradis::type_list<Es...>) {
 
 TEST_SUITE("elements/help") {
   TEST_CASE("the help text of every library element names its code-100 situations (and 90 / 75 where they apply)") {
-    static_assert(pradis::elements::library_elements::size == 37);
+    static_assert(pradis::elements::library_elements::size == 58);
     check_all_special(pradis::elements::library_elements{});
   }
 }

@@ -13,6 +13,10 @@
 #include "pradis/elements/hydraulic/orifices.hpp"
 #include "pradis/elements/hydraulic/valves.hpp"
 #include "pradis/elements/hydraulic/volume.hpp"
+#include "pradis/elements/electric/dc_motor.hpp"
+#include "pradis/elements/electric/passive.hpp"
+#include "pradis/elements/electric/semiconductors.hpp"
+#include "pradis/elements/electric/sources.hpp"
 #include "pradis/elements/mech1d/forces.hpp"
 #include "pradis/elements/mech1d/initial_conditions.hpp"
 #include "pradis/elements/mech1d/linear_damper.hpp"
@@ -20,6 +24,8 @@
 #include "pradis/elements/mech1d/point_mass.hpp"
 #include "pradis/elements/mech1d/sources.hpp"
 #include "pradis/elements/planar/eccentric_mass.hpp"
+#include "pradis/elements/pneumatic/chambers.hpp"
+#include "pradis/elements/pneumatic/orifice.hpp"
 #include "pradis/elements/planar/planar_inertia.hpp"
 #include "pradis/elements/planar/planar_link.hpp"
 #include "pradis/elements/spatial/beam.hpp"
@@ -54,9 +60,17 @@ using beam_elements = type_list<elastic_beam, beam_inertia>;
 using hydraulic_elements =
     type_list<hydraulic_volume, laminar_orifice, turbulent_orifice, hydraulic_line, hydraulic_pump, hydraulic_motor,
               hydraulic_cylinder, valve_22, valve_43, relief_valve, check_valve, accumulator>;
+/// Electric circuits and electromechanics (docs/domains-electric-pneumatic.md).
+using electric_elements =
+    type_list<resistor, capacitor, inductor, current_dc, current_sine, current_table, voltage_dc, voltage_sine,
+              voltage_table, floating_voltage_dc, floating_voltage_sine, floating_voltage_table, diode, time_switch,
+              dc_motor>;
+/// Pneumatics: gauge pressures and mass flows (docs/domains-electric-pneumatic.md).
+using pneumatic_elements = type_list<gas_chamber, gas_piston_chamber, pneumatic_cylinder, pneumatic_orifice,
+                                     pneumatic_pressure_source, pneumatic_flow_source>;
 /// Every element type of the built-in library.
 using library_elements = concat_t<mech1d_elements, planar_elements, spatial_elements, spatial_connector_elements,
-                                  beam_elements, hydraulic_elements>;
+                                  beam_elements, hydraulic_elements, electric_elements, pneumatic_elements>;
 
 }  // namespace pradis::elements
 
