@@ -6,7 +6,9 @@
 /// $REPLACE, $SAVE, $RESTORE), checks everything that can be checked before the
 /// run with `file:line:column` messages, then executes the actions.
 
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <iterator>
@@ -17,6 +19,7 @@
 #include <ostream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,6 +29,7 @@
 #include "pradis/linalg/sparse_lu.hpp"
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/io/progress.hpp"
+#include "pradis/io/csv_file.hpp"
 #include "pradis/io/table.hpp"
 #include "pradis/lang/ast.hpp"
 #include "pradis/lang/catalog.hpp"
@@ -38,12 +42,36 @@ namespace pradis::lang {
 struct run_settings {
   std::string output_dir = ".";  ///< directory for CSV, PNG and checkpoints ($SAVE/$RESTORE paths are relative to it)
   std::string stem = "model";    ///< prefix of the output files
-  bool plot = true;              ///< false: 'DISP writes its CSV but no PNG (no gnuplot needed)
-  bool write_files = true;       ///< false: no CSV/PNG and no SAVE-interval checkpoints (tests)
+  bool plot = true;              ///< false: 'DISP requests no PNG (session::plots() stays empty)
+  bool write_files = true;       ///< false: no CSV and no SAVE-interval checkpoints (tests)
   std::ostream* log = nullptr;   ///< report lines (stages, files written), or none
   /// A one-line progress display redrawn in place while a stage runs (for a
   /// terminal: `pradis run` passes stderr when it is one), or none.
   std::ostream* progress = nullptr;
+  /// Set to non-zero (by a signal handler: `pradis run` on SIGINT and SIGTERM)
+  /// to stop the run at the next step: run() then closes the results file with
+  /// the rows computed so far and throws lang::interrupted. Null: never stops.
+  const volatile std::sig_atomic_t* stop = nullptr;
+};
+
+/// A plot that a 'DISP asked for: the application draws it (the library does
+/// not run external programs; `pradis run` uses gnuplot, apps/common/gnuplot.hpp).
+struct plot_request {
+  std::vector<std::string> names;  ///< column labels (the CSV's columns after time)
+  std::string csv, png, title;     ///< data file (already written), image to draw, title
+};
+
+/// Thrown by session::run() when run_settings::stop was set: the run stopped at
+/// time(); the results file holds the rows computed until then.
+class interrupted : public std::runtime_error {
+ public:
+  /// The run stopped at simulated time t.
+  explicit interrupted(double t) : std::runtime_error("run interrupted"), t_(t) {}
+  /// Simulated time at which the run stopped.
+  double time() const noexcept { return t_; }
+
+ private:
+  double t_;
 };
 
 /// The integration scheme of a language stage: any member of the alpha family
@@ -94,6 +122,9 @@ class session {
   static constexpr std::size_t max_instances = 200000, max_outputs = 10000, max_list = 100000;
   /// Largest number of checkpoints the SAVE key of one stage may write.
   static constexpr double max_checkpoints = 10000;
+  /// Largest number of output rows of a run (all stages): 10 million rows of
+  /// 10 outputs are 800 MB in memory and about 2 GB of CSV.
+  static constexpr double max_rows = 1e7;
 
   /// Builds the model and checks outputs and actions. Throws lang_error.
   explicit session(ast::program prog) : prog_(std::move(prog)), model_(std::make_unique<library_model>()) {
@@ -107,37 +138,33 @@ class session {
 
   /// Executes the actions in file order and writes `<stem>.csv` with every
   /// output. Throws lang_error (model errors during the run are located at the
-  /// element's line, run failures at the stage's line).
+  /// element's line, run failures at the stage's line), pradis::error with code
+  /// io_error if a file cannot be written (with the system's reason), or
+  /// interrupted (run_settings::stop).
+  ///
+  /// The rows of `<stem>.csv` are written as they are computed, to
+  /// `<stem>.csv.part`; the output directory and that file are created before
+  /// the first stage, so an unusable directory fails at once. When the run ends,
+  /// normally or by an error or interruption, the file is closed (checked) and
+  /// renamed to `<stem>.csv`, so the rows computed before a failure are kept; if
+  /// writing the file fails, it is removed rather than left truncated.
   void run(const run_settings& s = {}) {
     settings_ = s;
     progress_ = settings_.progress ? std::make_unique<io::progress_line>(*settings_.progress) : nullptr;
-    if (settings_.write_files) std::filesystem::create_directories(settings_.output_dir);
-    for (const auto& a : prog_.actions) {
-      switch (a.what) {
-        case ast::action::kind::run:
-          run_stage(a.stage);
-          break;
-        case ast::action::kind::print:
-          display(a.stage);
-          break;
-        case ast::action::kind::replace:
-          replace(a);
-          break;
-        case ast::action::kind::save:
-          save(a);
-          break;
-        case ast::action::kind::restore:
-          restore(a);
-          break;
+    if (settings_.write_files) open_results();
+    try {
+      run_actions();
+    } catch (...) {
+      if (csv_) {
+        try {
+          close_results(true);
+        } catch (const pradis::error& e) {  // the run's error comes first; report the file's too
+          note("results: " + e.message());
+        }
       }
+      throw;
     }
-    if (settings_.write_files && !outputs_.empty()) {
-      const std::string csv = path_in_output(settings_.stem + ".csv");
-      results_.write_csv(csv);
-      note("results: " + csv + " (" + std::to_string(results_.rows()) + " rows, " + std::to_string(outputs_.size()) +
-           " outputs)");
-      files_.push_back(csv);
-    }
+    if (csv_) close_results(false);
   }
 
   /// The model (every library element type).
@@ -154,6 +181,8 @@ class session {
   const std::vector<std::string>& files() const noexcept { return files_; }
   /// One report per executed stage.
   const std::vector<stage_report>& stages() const noexcept { return reports_; }
+  /// The plots the 'DISP calls of the run asked for (their CSV files are written).
+  const std::vector<plot_request>& plots() const noexcept { return plots_; }
   /// The simulation (null before the first stage or $RESTORE).
   const sim_type* simulation_ptr() const noexcept { return sim_.get(); }
 
@@ -179,6 +208,56 @@ class session {
     os.precision(10);
     os << x;
     return os.str();
+  }
+
+  void run_actions() {
+    for (const auto& a : prog_.actions) {
+      switch (a.what) {
+        case ast::action::kind::run:
+          run_stage(a.stage);
+          break;
+        case ast::action::kind::print:
+          display(a.stage);
+          break;
+        case ast::action::kind::replace:
+          replace(a);
+          break;
+        case ast::action::kind::save:
+          save(a);
+          break;
+        case ast::action::kind::restore:
+          restore(a);
+          break;
+      }
+    }
+  }
+
+  /// Creates the output directory and starts `<stem>.csv` (as `<stem>.csv.part`),
+  /// so that an unusable directory is reported before any stage runs.
+  void open_results() {
+    std::error_code ec;
+    const std::string& dir = settings_.output_dir;
+    if (dir.empty()) throw pradis::error(error_code::io_error, "the output directory name is empty");
+    std::filesystem::create_directories(dir, ec);
+    if (!ec && !std::filesystem::is_directory(dir, ec)) ec = std::make_error_code(std::errc::not_a_directory);
+    if (ec)
+      throw pradis::error(error_code::io_error, "cannot use the output directory '" + dir + "': " +
+                                                    ec.message());
+    if (outputs_.empty()) return;
+    std::vector<std::string> names;
+    for (const auto& o : outputs_) names.push_back(o.label);
+    csv_ = std::make_unique<io::csv_file>(path_in_output(settings_.stem + ".csv"), names);
+  }
+
+  /// Closes `<stem>.csv` (checked) under its final name. `early`: the run did not
+  /// finish (an error or an interruption); the rows computed so far are kept.
+  void close_results(bool early) {
+    auto f = std::move(csv_);
+    f->commit();
+    note(std::string(early ? "results so far: " : "results: ") + f->path() + " (" + std::to_string(f->rows()) +
+         " rows, " + std::to_string(outputs_.size()) + " outputs" +
+         (early && sim_ ? ", up to t = " + num(sim_->time()) : std::string()) + ")");
+    files_.push_back(f->path());
   }
 
   // ---- $DATA ----------------------------------------------------------------------
@@ -539,6 +618,22 @@ class session {
           (void)expand(d.values, "$REPLACE");
         }
     }
+    // Two displays must not write the same file: labels that differ only in
+    // characters replaced by '_' ("a b", "a_b"), or in case (a file system may
+    // not tell "A" from "a"), or a label such as DISP2 that is also an unlabelled
+    // display's name.
+    std::map<std::string, location> files;
+    int k = 0;
+    for (const auto& a : prog_.actions) {
+      if (a.what != ast::action::kind::print) continue;
+      const ast::call& c = a.stage;
+      const std::string f =
+          upper(c.label.empty() ? upper(c.program) + std::to_string(++k) : (++k, file_part(c.label)));
+      if (auto [it, fresh] = files.emplace(f, c.loc); !fresh)
+        fail(c.loc, "this display would write the same files as the display at " + it->second.str() + " (<stem>." +
+                        f + ".csv; labels become file names with characters other than letters, digits, - and _ "
+                        "replaced by _, and case is ignored): give it another label");
+    }
     bool any_run = false;
     for (const auto& a : prog_.actions) any_run = any_run || a.what == ast::action::kind::run;
     if (!any_run) fail(prog_.end, "missing section $RUN (at least one stage, e.g. `Calculation 'SHTERM (END=1)`)");
@@ -549,6 +644,7 @@ class session {
     alpha_parameters scheme;  ///< the program's scheme, validated
     double save = 0;          ///< SAVE: checkpoint interval (0: none)
     location save_loc;        ///< where SAVE is
+    location out_loc;         ///< where OUT is
     int optim = -1;           ///< OPTIM: ordering level 0..4, or -1 to choose by size
   };
 
@@ -602,8 +698,10 @@ class session {
         if (k == "END") {
           s.opt.end = scalar(v, "END");
           has_end = true;
-        } else if (k == "OUT")
+        } else if (k == "OUT") {
           s.opt.out = scalar(v, "OUT");
+          s.out_loc = it.loc;
+        }
         else if (k == "SMAX")
           s.opt.smax = scalar(v, "SMAX");
         else if (k == "SMIN")
@@ -745,7 +843,17 @@ class session {
           break;
       }
     }
+    if (static_cast<double>(results_.rows()) >= max_rows)
+      throw pradis::error(error_code::invalid_option,
+                          "the run has produced " + num(max_rows) + " output rows, the most pradis writes: make OUT "
+                          "larger (or SMAX, with OUT = 0: a row every step)");
     results_.add_row(s.time(), row);
+    if (csv_) csv_->add_row(s.time(), row);
+  }
+
+  /// Stops the run if run_settings::stop was set (by a signal).
+  void check_stop(const sim_type& s) const {
+    if (settings_.stop && *settings_.stop) throw interrupted(s.time());
   }
 
   std::unique_ptr<sim_type> make_sim(const alpha_parameters& p) {
@@ -753,9 +861,13 @@ class session {
     s->on_output([this](const sim_type& x) {
       record(x);
       show_progress(x);  // also at t0, before the first step
+      check_stop(x);
     });
-    // Every accepted step; the line itself redraws at most ten times a second.
-    if (progress_) s->on_step([this](const sim_type& x) { show_progress(x); });
+    // Every accepted step; the progress line itself redraws at most ten times a second.
+    s->on_step([this](const sim_type& x) {
+      show_progress(x);
+      check_stop(x);
+    });
     return s;
   }
 
@@ -791,6 +903,7 @@ class session {
   }
 
   [[noreturn]] void rethrow(const pradis::error& e, const ast::call& c) const {
+    if (e.code() == error_code::io_error) throw e;  // a results file: the message names it, not the model
     std::string what = std::string(e.element_type());
     if (!e.instance().empty()) what += (what.empty() ? "'" : " '") + e.instance() + "'";
     std::string msg = e.message();
@@ -836,6 +949,10 @@ class session {
     if (started_ && !(st.opt.end > t0))
       fail(c.args_loc, "END = " + num(st.opt.end) + " must be after the current time " + num(t0));
     if (st.save > 0) check_save(st, t0);
+    if (st.opt.out > 0 && static_cast<double>(results_.rows()) + (st.opt.end - t0) / st.opt.out > max_rows)
+      fail(st.out_loc, "OUT = " + num(st.opt.out) + " would write " + num(std::floor((st.opt.end - t0) / st.opt.out)) +
+                           " output rows in this stage (from t = " + num(t0) + " to END = " + num(st.opt.end) +
+                           "); at most " + num(max_rows) + " rows are written in a run: make OUT larger");
     stage_report r{c.label, c.program, t0, st.opt.end, {}};
     const run_statistics before = sim_->statistics();
     struct progress_guard {
@@ -911,20 +1028,17 @@ class session {
     }
     ++displays_;
     if (!settings_.write_files) return;
-    const std::string base = path_in_output(
-        settings_.stem + "." + (c.label.empty() ? upper(c.program) + std::to_string(displays_) : file_part(c.label)));
-    try {
-      t.write_csv(base + ".csv");
-      files_.push_back(base + ".csv");
-      note(c.program + ": " + base + ".csv");
-      if (c.program == "DISP" && settings_.plot) {
-        t.plot_png(base + ".csv", base + ".png", c.label.empty() ? settings_.stem : c.label);
-        files_.push_back(base + ".png");
-        note(c.program + ": " + base + ".png");
-      }
-    } catch (const pradis::error& e) {
-      fail(c.loc, e.message());
-    }
+    const std::string base = path_in_output(display_file(c, displays_));
+    t.write_csv(base + ".csv");  // a pradis::error (io_error) names the file and the reason
+    files_.push_back(base + ".csv");
+    note(c.program + ": " + base + ".csv");
+    if (c.program == "DISP" && settings_.plot)
+      plots_.push_back({names, base + ".csv", base + ".png", c.label.empty() ? settings_.stem : c.label});
+  }
+
+  /// `<stem>.<label>` of the k-th display (1-based), without extension.
+  std::string display_file(const ast::call& c, int k) const {
+    return settings_.stem + "." + (c.label.empty() ? upper(c.program) + std::to_string(k) : file_part(c.label));
   }
 
   void replace(const ast::action& a) {
@@ -955,8 +1069,9 @@ class session {
 
   /// Writes the simulation's checkpoint followed by the scheme record.
   void write_checkpoint(const std::string& p, const location& where) {
+    errno = 0;
     std::ofstream f(p, std::ios::binary);
-    if (!f) fail(where, "cannot write the checkpoint '" + p + "'");
+    if (!f) fail(where, "cannot write the checkpoint '" + p + "'" + os_reason());
     try {
       sim_->save_checkpoint(f);
     } catch (const pradis::error& e) {
@@ -965,8 +1080,9 @@ class session {
     const double q[4] = {scheme_.alpha_m, scheme_.alpha_f, scheme_.beta, scheme_.gamma};
     f.write(reinterpret_cast<const char*>(q), sizeof q);
     f.write(scheme_tag, sizeof scheme_tag);
-    f.flush();
-    if (!f) fail(where, "cannot write the checkpoint '" + p + "'");
+    errno = 0;
+    f.close();
+    if (!f) fail(where, "cannot write the checkpoint '" + p + "'" + os_reason());
   }
 
   void save(const ast::action& a) {
@@ -979,8 +1095,9 @@ class session {
 
   void restore(const ast::action& a) {
     const std::string p = path_in_output(a.path);
+    errno = 0;
     std::ifstream f(p, std::ios::binary);
-    if (!f) fail(a.loc, "cannot read the checkpoint '" + p + "'");
+    if (!f) fail(a.loc, "cannot read the checkpoint '" + p + "'" + os_reason());
     const std::string bytes{std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
     // The scheme that wrote it, if the session's record is there.
     alpha_parameters q = stoermer{}.coefficients_set();
@@ -1029,6 +1146,8 @@ class session {
   run_settings settings_;
   std::vector<std::string> files_;
   std::vector<stage_report> reports_;
+  std::unique_ptr<io::csv_file> csv_;  ///< `<stem>.csv` while the run writes it
+  std::vector<plot_request> plots_;
 };
 
 }  // namespace pradis::lang
