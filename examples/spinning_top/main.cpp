@@ -71,7 +71,9 @@ int main(int argc, char** argv) try {
             << st.newton_iterations << "\n";
   if (plot) {
     const std::string png = dir + "/spinning_top.png";
-    if (const std::string why = pradis_apps::plot_png(out.names(), csv, png, "heavy symmetric top on SPH3: tip trajectory and angles"); !why.empty())
+    const std::string why = pradis_apps::plot_png(out.names(), csv, png,
+                                                  "heavy symmetric top on SPH3: tip trajectory and angles");
+    if (!why.empty())
       std::cerr << "warning: " << why << "\n";
     else
       std::cout << "plot: " << png << "\n";

@@ -63,7 +63,9 @@ int main(int argc, char** argv) try {
             << " N\n";
   if (plot) {
     const std::string png = dir + "/two_bodies.png";
-    if (const std::string why = pradis_apps::plot_png(out.names(), csv, png, "two bodies joined by LINKD (manual Fig. 3.3)"); !why.empty())
+    const std::string why = pradis_apps::plot_png(out.names(), csv, png,
+                                                  "two bodies joined by LINKD (manual Fig. 3.3)");
+    if (!why.empty())
       std::cerr << "warning: " << why << "\n";
     else
       std::cout << "plot: " << png << "\n";

@@ -128,8 +128,8 @@ TEST_SUITE("lang/results files") {
     CHECK(e.rfind("test.prd:17:3: error: this display would write the same files as the display at test.prd:16:3",
                   0) == 0);
     // Case: a file system may not tell them apart.
-    CHECK(lang_test::error_of(small_with("$END", "$PRINT\n  Plot 'TABL ()\n  plot 'TABL ()\n$END")).find("same files") !=
-          std::string::npos);
+    const std::string by_case = small_with("$END", "$PRINT\n  Plot 'TABL ()\n  plot 'TABL ()\n$END");
+    CHECK(lang_test::error_of(by_case).find("same files") != std::string::npos);
     // A label equal to the name of an unlabelled display (the second display is DISP2).
     CHECK(lang_test::error_of(small_with("$END", "$PRINT\n  'TABL ()\n  'DISP ()\n  DISP2 'TABL ()\n$END"))
               .find("same files as the display at test.prd:17:3") != std::string::npos);

@@ -94,6 +94,8 @@ class csv_file {
     if (!committed_) std::remove(temp_.c_str());
   }
 
+  /// Whether the file is open (false after commit(), abandon() or a failed write).
+  bool is_open() const noexcept { return f_ != nullptr; }
   /// The final path of the file.
   const std::string& path() const noexcept { return path_; }
   /// The temporary file the rows are written to until commit().

@@ -69,7 +69,7 @@ class session : public action_checker {
     try {
       run_actions();
     } catch (...) {
-      if (csv_) {
+      if (csv_ && csv_->is_open()) {  // not if writing it was what failed
         try {
           close_results(true);
         } catch (const pradis::error& e) {  // the run's error comes first; report the file's too

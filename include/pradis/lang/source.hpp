@@ -173,7 +173,8 @@ inline std::string nearest(std::string_view word, const std::vector<std::string>
   // wrong character, not as its two to four bytes.
   std::string w;
   for (std::size_t i = 0; i < word.size();) {
-    const std::size_t n = static_cast<unsigned char>(word[i]) < 0x80 ? 1 : std::max<std::size_t>(1, detail::utf8_length(word, i));
+    const bool ascii = static_cast<unsigned char>(word[i]) < 0x80;
+    const std::size_t n = ascii ? 1 : std::max<std::size_t>(1, detail::utf8_length(word, i));
     w += n == 1 ? word[i] : '\x01';
     i += n;
   }
