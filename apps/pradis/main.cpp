@@ -25,9 +25,13 @@
 
 namespace {
 
-/// Set by SIGINT and SIGTERM: the session stops at the next step and keeps the rows so far.
+/// Set by SIGINT and SIGTERM: the session stops at the next step and keeps the
+/// rows so far. A second signal of the same kind ends the program at once.
 volatile std::sig_atomic_t stop_signal = 0;
-extern "C" void on_stop_signal(int sig) { stop_signal = sig; }
+extern "C" void on_stop_signal(int sig) {
+  stop_signal = sig;
+  std::signal(sig, SIG_DFL);
+}
 
 constexpr const char* main_usage =
     "usage: pradis <command> [options]\n"
