@@ -5,6 +5,8 @@
 #                           compiler output must contain the message on its first
 #                           line ("// pradis-expect: <message>"). Files named
 #                           ok_*.cpp are positive controls and MUST compile.
+#   docs.listings           every ```cpp listing of README.md and docs/*.md must
+#                           compile (tests/docs/check_listings.cmake).
 #   consumer_find_package   installs this build tree into a scratch prefix and
 #                           builds and runs tests/consumer against it with
 #                           find_package(pradis).
@@ -70,6 +72,20 @@ if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
       set_tests_properties(compile_fail.${_name} PROPERTIES PASS_REGULAR_EXPRESSION "${_expected}")
     endif()
   endforeach()
+
+  # The C++ listings of README.md and docs/*.md (tests/docs/check_listings.cmake).
+  add_test(NAME docs.listings
+           COMMAND "${CMAKE_COMMAND}"
+                   "-DSOURCE_DIR=${PROJECT_SOURCE_DIR}"
+                   "-DOUTPUT=${CMAKE_CURRENT_BINARY_DIR}/doc_listings.cpp"
+                   "-DCOMPILER=${CMAKE_CXX_COMPILER}"
+                   "-DSTD_FLAG=${_pradis_std_flag}"
+                   "-DINCLUDES=${_pradis_includes}"
+                   -P "${_pradis_bt_dir}/docs/check_listings.cmake")
+  set_tests_properties(docs.listings PROPERTIES
+                       LABELS "build;docs"
+                       FAIL_REGULAR_EXPRESSION "pradis-compile-check: FAILED"
+                       TIMEOUT 300)
 else()
   message(STATUS "pradis: compile_fail tests need a GCC or Clang style compiler; skipped for ${CMAKE_CXX_COMPILER_ID}")
 endif()

@@ -11,16 +11,27 @@
 
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "common/gnuplot.hpp"
 #include "pradis/lang/lang.hpp"
 
 namespace {
+
+/// Set by SIGINT and SIGTERM: the session stops at the next step and keeps the
+/// rows so far. A second signal of the same kind ends the program at once.
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void on_stop_signal(int sig) {
+  stop_signal = sig;
+  std::signal(sig, SIG_DFL);
+}
 
 constexpr const char* main_usage =
     "usage: pradis <command> [options]\n"
@@ -56,8 +67,14 @@ constexpr const char* run_usage =
     "size, the Newton iterations and the elapsed and estimated remaining time; it\n"
     "is redrawn in place at most ten times a second and cleared when the stage ends.\n"
     "\n"
+    "The rows of DIR/<name>.csv are written as they are computed (to\n"
+    "DIR/<name>.csv.part, renamed when the run ends); if a stage fails or the run is\n"
+    "interrupted (Ctrl-C, SIGTERM), the rows computed so far are kept in DIR/<name>.csv.\n"
+    "A failed plot (no gnuplot) is a warning.\n"
+    "\n"
     "Errors in the file are reported as `file:line:column: error: message` with the\n"
-    "offending line; the exit status is then 1.\n";
+    "offending line; the exit status is then 1 (also when a file cannot be written;\n"
+    "130 after SIGINT, 143 after SIGTERM).\n";
 
 constexpr const char* list_usage =
     "usage: pradis list\n\nPrints the catalog: element models, integration programs, output programs and\n"
@@ -76,7 +93,7 @@ constexpr const char* check_usage =
 bool is_help(const std::string& a) { return a == "--help" || a == "-h"; }
 
 int usage_error(const std::string& msg, const char* usage) {
-  std::cerr << "pradis: " << msg << "\n\n" << usage;
+  std::cerr << "pradis: " << pradis::lang::printable(msg) << "\n\n" << usage;
   return 2;
 }
 
@@ -105,6 +122,7 @@ int cmd_run(const std::vector<std::string>& args) {
     if (a == "-o") {
       if (i + 1 >= args.size()) return usage_error("-o needs a directory", run_usage);
       dir = args[++i];
+      if (dir.empty()) return usage_error("-o needs a directory name, not an empty string", run_usage);
     } else if (a == "--no-plot") {
       plot = false;
     } else if (a == "-q") {
@@ -119,6 +137,19 @@ int cmd_run(const std::vector<std::string>& args) {
       return usage_error("run takes one model file, got '" + file + "' and '" + a + "'", run_usage);
     }
   }
+  std::unique_ptr<pradis::lang::session> s;
+  // Plots after the CSV files are written, also after a failed or interrupted
+  // run (for the displays that ran); a failed plot is a warning.
+  auto plot_all = [&] {
+    if (!s) return;
+    for (const auto& p : s->plots()) {
+      const std::string why = pradis_apps::plot_png(p.names, p.csv, p.png, p.title);
+      if (!why.empty())
+        std::cerr << "pradis: warning: " << why << "; the data are in " << p.csv << '\n';
+      else if (!quiet)
+        std::cout << "DISP: " << p.png << '\n';
+    }
+  };
   try {
     pradis::lang::ast::program prog;
     std::string stem;
@@ -134,23 +165,36 @@ int cmd_run(const std::vector<std::string>& args) {
       stem = std::filesystem::path(file).stem().string();
       if (stem.empty()) stem = "model";
     }
-    pradis::lang::session s(std::move(prog));
+    s = std::make_unique<pradis::lang::session>(std::move(prog));
     const bool show_progress = progress == 1 || (progress == -1 && !quiet && isatty(fileno(stderr)) == 1);
-    s.run({.output_dir = dir,
-           .stem = stem,
-           .plot = plot,
-           .write_files = true,
-           .log = quiet ? nullptr : &std::cout,
-           .progress = show_progress ? &std::cerr : nullptr});
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+    s->run({.output_dir = dir,
+            .stem = stem,
+            .plot = plot,
+            .write_files = true,
+            .log = quiet ? nullptr : &std::cout,
+            .progress = show_progress ? &std::cerr : nullptr,
+            .stop = &stop_signal});
+    plot_all();
     return 0;
+  } catch (const pradis::lang::interrupted& e) {
+    std::cout.flush();
+    std::cerr << "pradis: interrupted at t = " << e.time() << "; the rows computed so far are kept\n";
+    plot_all();
+    return stop_signal == SIGTERM ? 143 : 130;
   } catch (const pradis::lang::lang_error& e) {
+    std::cout.flush();
     std::cerr << e.what() << '\n' << e.excerpt();
+    plot_all();
     return 1;
   } catch (const pradis::error& e) {
-    std::cerr << "pradis: error: " << e.what() << '\n';
+    std::cout.flush();
+    std::cerr << "pradis: error: " << pradis::lang::printable(e.what()) << '\n';
+    plot_all();
     return 1;
   } catch (const std::filesystem::filesystem_error& e) {
-    std::cerr << "pradis: error: " << e.what() << '\n';
+    std::cerr << "pradis: error: " << pradis::lang::printable(e.what()) << '\n';
     return 1;
   }
 }

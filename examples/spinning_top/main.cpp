@@ -24,6 +24,7 @@
 #include "top_model.hpp"
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/io/table.hpp"
+#include "common/gnuplot.hpp"
 #include "pradis/spatial/node_state.hpp"
 
 int main(int argc, char** argv) try {
@@ -70,8 +71,12 @@ int main(int argc, char** argv) try {
             << st.newton_iterations << "\n";
   if (plot) {
     const std::string png = dir + "/spinning_top.png";
-    out.plot_png(csv, png, "heavy symmetric top on SPH3: tip trajectory and angles");
-    std::cout << "plot: " << png << "\n";
+    const std::string why = pradis_apps::plot_png(out.names(), csv, png,
+                                                  "heavy symmetric top on SPH3: tip trajectory and angles");
+    if (!why.empty())
+      std::cerr << "warning: " << why << "\n";
+    else
+      std::cout << "plot: " << png << "\n";
   }
   return 0;
 } catch (const pradis::error& e) {

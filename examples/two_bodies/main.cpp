@@ -17,6 +17,7 @@
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/io/table.hpp"
+#include "common/gnuplot.hpp"
 
 int main(int argc, char** argv) try {
   using namespace pradis;
@@ -62,8 +63,12 @@ int main(int argc, char** argv) try {
             << " N\n";
   if (plot) {
     const std::string png = dir + "/two_bodies.png";
-    out.plot_png(csv, png, "two bodies joined by LINKD (manual Fig. 3.3)");
-    std::cout << "plot: " << png << "\n";
+    const std::string why = pradis_apps::plot_png(out.names(), csv, png,
+                                                  "two bodies joined by LINKD (manual Fig. 3.3)");
+    if (!why.empty())
+      std::cerr << "warning: " << why << "\n";
+    else
+      std::cout << "plot: " << png << "\n";
   }
   return 0;
 } catch (const pradis::error& e) {

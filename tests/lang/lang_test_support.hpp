@@ -5,8 +5,11 @@
 #include <doctest/doctest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <optional>
+#include <random>
+#include <sstream>
 #include <string>
 
 #include "pradis/lang/lang.hpp"
@@ -16,6 +19,22 @@ namespace lang_test {
 /// examples/models of this source tree (found from this file's path).
 inline std::filesystem::path models_dir() {
   return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "examples" / "models";
+}
+
+/// A fresh scratch directory for tests that write files.
+inline std::filesystem::path scratch_dir(const std::string& tag) {
+  std::random_device rd;
+  auto p = std::filesystem::temp_directory_path() / ("pradis_lang_" + tag + "_" + std::to_string(rd()));
+  std::filesystem::create_directories(p);
+  return p;
+}
+
+/// The whole content of a file (empty if it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream os;
+  os << f.rdbuf();
+  return os.str();
 }
 
 /// A loader over in-memory files (for $INCLUDE tests).

@@ -16,19 +16,8 @@ using lang_test::small_model;
 using lang_test::small_with;
 
 namespace {
-/// A fresh scratch directory for tests that write files.
-std::filesystem::path scratch_dir(const std::string& tag) {
-  std::random_device rd;
-  auto p = std::filesystem::temp_directory_path() / ("pradis_lang_" + tag + "_" + std::to_string(rd()));
-  std::filesystem::create_directories(p);
-  return p;
-}
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream os;
-  os << f.rdbuf();
-  return os.str();
-}
+using lang_test::scratch_dir;
+using lang_test::slurp;
 /// Column of a results table by label.
 std::size_t column(const io::table& t, const std::string& label) {
   for (std::size_t c = 0; c < t.names().size(); ++c)

@@ -14,19 +14,8 @@ using namespace pradis;
 using lang_test::small_with;
 
 namespace {
-/// A fresh scratch directory for tests that write files.
-std::filesystem::path scratch_dir(const std::string& tag) {
-  std::random_device rd;
-  auto p = std::filesystem::temp_directory_path() / ("pradis_save_" + tag + "_" + std::to_string(rd()));
-  std::filesystem::create_directories(p);
-  return p;
-}
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream os;
-  os << f.rdbuf();
-  return os.str();
-}
+using lang_test::scratch_dir;
+using lang_test::slurp;
 /// The small model (mass 2, spring 100, load 10) with its position, velocity
 /// and acceleration as outputs and the stage lines `stages` under $RUN.
 std::string model_with(const std::string& before_run, const std::string& stages) {

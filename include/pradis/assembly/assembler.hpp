@@ -226,6 +226,7 @@ class assembler<model<Es...>> {
     using tr = element_traits<E>;
     constexpr int n = tr::n;
     auto& vec = m.template instances<E>();
+    if (vec.empty()) return;  // most of library_model's types in a small model: no set-up for them
     local_input<E> li;
     local_output<E> out;
     li.t = info.time;

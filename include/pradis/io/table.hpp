@@ -1,16 +1,15 @@
 #pragma once
 /// \file
-/// A time-series table of named output variables, written as CSV and plotted
-/// with gnuplot (the roles of PRADIS's 'TABL and 'DISP display programs).
+/// A time-series table of named output variables, written as CSV (the data of
+/// PRADIS's 'TABL and 'DISP display programs; plotting is the application's
+/// business: apps/common/gnuplot.hpp).
 
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
-#include <iomanip>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "pradis/core/error.hpp"
+#include "pradis/io/csv_file.hpp"
 
 namespace pradis::io {
 
@@ -35,66 +34,18 @@ class table {
   /// Column names (without time).
   const std::vector<std::string>& names() const noexcept { return names_; }
 
-  /// Writes the table as CSV with a header line; full double precision.
+  /// Writes the table as CSV with a header line, full double precision, through
+  /// a temporary file renamed at the end (io::csv_file: every write checked; a
+  /// failure throws pradis::error with code io_error and leaves no truncated file).
   void write_csv(const std::string& path) const {
-    std::ofstream f(path);
-    if (!f) throw error(error_code::io_error, "cannot write '" + path + "'");
-    f << "t";
-    for (const auto& n : names_) f << ',' << quote(n);
-    f << '\n' << std::setprecision(17);
+    csv_file f(path, names_);
     const std::size_t w = names_.size() + 1;
-    for (std::size_t r = 0; r < rows(); ++r) {
-      for (std::size_t c = 0; c < w; ++c) f << (c ? "," : "") << rows_[r * w + c];
-      f << '\n';
-    }
-    if (!f) throw error(error_code::io_error, "error while writing '" + path + "'");
-  }
-
-  /// Plots every column against time, one panel per column, into a PNG with
-  /// gnuplot (which must be on PATH). Writes the gnuplot script next to the
-  /// image (`<png>.gp`) and reads the data from `csv` (written by write_csv).
-  void plot_png(const std::string& csv, const std::string& png, const std::string& title) const {
-    // Paths go into a gnuplot script and a shell command in single quotes: refuse
-    // characters that would end the quoting rather than escape them.
-    for (const std::string* s : {&csv, &png})
-      if (s->find_first_of("'\"\n\\`$") != std::string::npos)
-        throw error(error_code::io_error, "cannot plot to or from '" + *s +
-                                              "': the path contains a quote, backslash, $, backquote or newline");
-    const std::string script = png + ".gp";
-    {
-      std::ofstream g(script);
-      if (!g) throw error(error_code::io_error, "cannot write '" + script + "'");
-      const std::size_t n = names_.size();
-      g << "set datafile separator ','\n"
-        << "set terminal pngcairo size 900," << 260 * n + 60 << " font 'sans,10'\n"
-        << "set output '" << png << "'\n"
-        << "set multiplot layout " << n << ",1 title '" << label(title) << "'\n"
-        << "set grid\nset key off\n";
-      for (std::size_t c = 0; c < n; ++c) {
-        g << "set ylabel '" << label(names_[c]) << "'\n";
-        if (c + 1 == n) g << "set xlabel 't [s]'\n";
-        g << "plot '" << csv << "' using 1:" << c + 2 << " every ::1 with lines lw 2\n";
-      }
-      g << "unset multiplot\n";
-    }
-    const std::string cmd = "gnuplot '" + script + "'";
-    if (std::system(cmd.c_str()) != 0)
-      throw error(error_code::io_error, "gnuplot failed on '" + script + "' (is gnuplot installed?)");
+    for (std::size_t r = 0; r < rows(); ++r)
+      f.add_row(rows_[r * w], std::span<const double>(rows_.data() + r * w + 1, names_.size()));
+    f.commit();
   }
 
  private:
-  /// A label safe inside single quotes in a gnuplot script.
-  static std::string label(const std::string& s) {
-    std::string o;
-    for (char ch : s) o += (ch == '\'' || ch == '\n' || ch == '\\') ? ' ' : ch;
-    return o;
-  }
-  static std::string quote(const std::string& s) {
-    if (s.find_first_of(",\"") == std::string::npos) return s;
-    std::string o = "\"";
-    for (char ch : s) o += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-    return o + "\"";
-  }
   std::vector<std::string> names_;
   std::vector<double> rows_;
 };

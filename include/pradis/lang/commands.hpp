@@ -7,6 +7,7 @@
 /// Kept in the library so that tests can call them without the executable.
 
 #include <iomanip>
+#include <optional>
 #include <ostream>
 #include <random>
 #include <string>
@@ -120,7 +121,7 @@ inline bool print_reference(std::ostream& os, std::ostream& err, std::string_vie
   else if (auto* r = find_program(display_programs(), n))
     print_program_reference(os, *r, "display program");
   else {
-    err << "pradis: error: no element or program named '" << name << "'" << did_you_mean(n, help_names())
+    err << "pradis: error: no element or program named '" << printable(name) << "'" << did_you_mean(n, help_names())
         << "; `pradis list` shows the catalog\n";
     return false;
   }
@@ -175,17 +176,19 @@ bool check_element_jacobian(std::ostream& os, const check_options& o) {
   return failed == 0 && checked > 0;
 }
 
-/// `pradis check NAME`. Returns 0 if the Jacobian is right, 1 if wrong, 2 if NAME is unknown.
+/// `pradis check NAME`: the exit status of the command. Returns 0 if the
+/// Jacobian is right, 1 if it is wrong or NAME is not an element (then with a
+/// message and the nearest name on `err`), as docs/language.md states.
 inline int check_by_name(std::ostream& os, std::ostream& err, std::string_view name, const check_options& o) {
   const std::string n = upper(name);
-  int result = 2;
+  std::optional<bool> ok;  // empty: no element of that name
   library_model::for_each_type([&]<class E>(std::type_identity<E>) {
-    if (result == 2 && E::passport.name == n) result = check_element_jacobian<E>(os, o) ? 0 : 1;
+    if (!ok && E::passport.name == n) ok = check_element_jacobian<E>(os, o);
   });
-  if (result == 2)
-    err << "pradis: error: no element named '" << name << "'" << did_you_mean(n, element_names())
+  if (!ok)
+    err << "pradis: error: no element named '" << printable(name) << "'" << did_you_mean(n, element_names())
         << "; `pradis list` shows the catalog\n";
-  return result;
+  return ok && *ok ? 0 : 1;
 }
 
 }  // namespace pradis::lang

@@ -8,7 +8,7 @@
 /// Comments: a line whose first non-blank character is `*`, and everything
 /// from `//` to the end of the line. Control characters other than tab, CR and
 /// LF (binary data) are an error. Nothing after `$END` is read. Bytes >= 0x80
-/// (UTF-8) may appear in words.
+/// (UTF-8) may appear in words. A line ends at LF, CR LF or a lone CR.
 
 #include <cctype>
 #include <cstdlib>
@@ -119,7 +119,7 @@ inline std::vector<token> lex(const std::shared_ptr<const source_file>& src) {
   auto loc_at = [&](std::size_t p) { return location{src, line, static_cast<int>(p - line_start) + 1}; };
   auto push = [&](tok k, std::string text, std::size_t p) { out.push_back({k, std::move(text), loc_at(p)}); };
   auto skip_to_eol = [&] {
-    while (i < s.size() && s[i] != '\n') {
+    while (i < s.size() && s[i] != '\n' && s[i] != '\r') {
       if (detail::is_control(s[i]))
         throw lang_error(loc_at(i), "invalid character (byte " + std::to_string(static_cast<unsigned char>(s[i])) +
                                         "): this does not look like a text file");
@@ -128,7 +128,7 @@ inline std::vector<token> lex(const std::shared_ptr<const source_file>& src) {
   };
   while (i < s.size()) {
     const char c = s[i];
-    if (c == '\n') {
+    if (c == '\n' || (c == '\r' && (i + 1 >= s.size() || s[i + 1] != '\n'))) {  // LF, or a lone CR (old Mac)
       push(tok::newline, {}, i);
       ++i;
       ++line;
@@ -173,7 +173,7 @@ inline std::vector<token> lex(const std::shared_ptr<const source_file>& src) {
         continue;
       case '"': {
         ++i;
-        while (i < s.size() && s[i] != '"' && s[i] != '\n') {
+        while (i < s.size() && s[i] != '"' && s[i] != '\n' && s[i] != '\r') {
           if (detail::is_control(s[i])) throw lang_error(loc_at(i), "invalid character in a string");
           ++i;
         }
@@ -188,7 +188,9 @@ inline std::vector<token> lex(const std::shared_ptr<const source_file>& src) {
         if (c == '#')
           while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
         const std::size_t k = i;
-        while (i < s.size() && detail::is_alpha(s[i])) ++i;
+        // Non-ASCII bytes are taken into the keyword so that a look-alike letter
+        // ($DАTA with a Cyrillic А) gives "unknown section $DАTA (did you mean 'DATA'?)".
+        while (i < s.size() && (detail::is_alpha(s[i]) || static_cast<unsigned char>(s[i]) >= 0x80)) ++i;
         if (i == k)
           throw lang_error(loc_at(start), std::string("expected a ") + (c == '$' ? "section" : "subsection") +
                                               " keyword after '" + c + "'");
@@ -253,6 +255,17 @@ inline std::optional<double> parse_number(std::string_view w) {
   const double x = std::strtod(t.c_str(), &end);
   if (end != t.c_str() + t.size() || !(x - x == 0)) return std::nullopt;  // out of range (inf)
   return x;
+}
+
+/// Whether a word that parse_number accepted as 0 has a non-zero digit in its
+/// mantissa: a number such as 1E-400 that underflows to 0 (an error, not a silent 0).
+inline bool underflows(std::string_view w, double x) {
+  if (x != 0) return false;
+  for (char c : w) {
+    if (c == 'e' || c == 'E' || c == 'd' || c == 'D') break;
+    if (c >= '1' && c <= '9') return true;
+  }
+  return false;
 }
 
 }  // namespace pradis::lang

@@ -4,7 +4,9 @@
 /// $INCLUDE is resolved here (relative to the including file), so the program
 /// holds the merged contents of every file; locations keep their own file.
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -22,14 +24,22 @@ namespace pradis::lang {
 /// Reads an included file by its (resolved) path; nothing if it cannot be read.
 using file_loader = std::function<std::optional<std::string>(const std::string& path)>;
 
-/// Reads a file from disk (binary, whole).
+/// Reads a file from disk (binary, whole); nothing if it cannot be read (errno
+/// then tells why).
 inline std::optional<std::string> read_file(const std::string& path) {
+  errno = 0;
   std::ifstream f(path, std::ios::binary);
   if (!f) return std::nullopt;
   std::ostringstream os;
   os << f.rdbuf();
   if (f.bad()) return std::nullopt;
   return os.str();
+}
+
+/// ": <the system's reason>" for the last failed file operation (errno), or "".
+inline std::string os_reason() {
+  const int e = errno;
+  return e == 0 ? std::string() : std::string(": ") + std::strerror(e);
 }
 
 /// Section keywords, for suggestions.
@@ -248,9 +258,12 @@ class parser {
     if (p.is_relative()) p = std::filesystem::path(src_->name).parent_path() / p;
     const std::string resolved = p.lexically_normal().string();
     std::error_code ec;
+    errno = 0;
     std::optional<std::string> text =
         load_ && !std::filesystem::is_directory(resolved, ec) ? load_(resolved) : std::nullopt;
-    if (!text) fail(t.loc, "cannot read the included file '" + resolved + "'");
+    if (!text)
+      fail(t.loc, "cannot read the included file '" + resolved + "'" +
+                      (std::filesystem::is_directory(resolved, ec) ? ": it is a directory" : os_reason()));
     auto src = std::make_shared<const source_file>(source_file{resolved, std::move(*text)});
     parser sub(src, prog_, load_, depth_ + 1);
     sub.parse();  // $END in an included file ends that file only
@@ -292,6 +305,8 @@ class parser {
     ast::call c;
     c.loc = cur().loc;
     c.label = words_until_any("");
+    if (!c.label.empty() && !name_start(c.label))
+      fail(c.loc, "a label must start with a letter or '_': '" + c.label + "'");
     if (!at(tok::quote))
       fail(cur().loc, c.label.empty() ? "expected a statement `Label 'NAME (...)`, found " + describe(cur())
                                       : "expected \"'\" and a model or program name after '" + c.label + "', found " +
@@ -391,7 +406,13 @@ class parser {
     if (t.kind != tok::word) fail(t.loc, "expected a number or a name, found " + describe(t));
     if (looks_numeric(t.text)) {
       const auto x = parse_number(t.text);
+      if (!x && t.text.size() > 400)
+        fail(t.loc, "unparsable number: a word of " + std::to_string(t.text.size()) +
+                        " characters starting with a digit (a number has at most 400)");
       if (!x) fail(t.loc, "unparsable number '" + t.text + "'");
+      if (underflows(t.text, *x))
+        fail(t.loc, "the number " + t.text + " is too small for double precision (it would become 0; the smallest "
+                    "normal magnitude is 2.2E-308): write 0 if 0 is meant");
       v.number = *x;
       ++p_;
       return v;
@@ -438,7 +459,7 @@ inline ast::program parse_file(const std::string& path) {
   auto text = dir ? std::nullopt : read_file(path);
   if (!text)
     throw lang_error(location{std::make_shared<const source_file>(source_file{path, {}}), 0, 0},
-                     dir ? "this is a directory, not a model file" : "cannot read the model file");
+                     dir ? "this is a directory, not a model file" : "cannot read the model file" + os_reason());
   return parse_string(std::move(*text), path);
 }
 

@@ -20,21 +20,70 @@ struct source_file {
   std::string text;  ///< the whole text
 
   /// Line n (1-based) without its end-of-line characters; empty if out of range.
+  /// A line ends at LF, CR LF or a lone CR (old Mac files), as in the lexer.
   std::string_view line(int n) const {
     if (n < 1) return {};
     std::size_t pos = 0;
     for (int k = 1; k < n; ++k) {
-      pos = text.find('\n', pos);
+      pos = text.find_first_of("\r\n", pos);
       if (pos == std::string::npos) return {};
-      ++pos;
+      pos += (text[pos] == '\r' && pos + 1 < text.size() && text[pos + 1] == '\n') ? 2 : 1;
     }
-    std::size_t end = text.find('\n', pos);
+    std::size_t end = text.find_first_of("\r\n", pos);
     if (end == std::string::npos) end = text.size();
-    std::string_view s(text.data() + pos, end - pos);
-    if (!s.empty() && s.back() == '\r') s.remove_suffix(1);
-    return s;
+    return std::string_view(text.data() + pos, end - pos);
   }
 };
+
+namespace detail {
+/// Length of the valid UTF-8 sequence starting at s[i] (1 to 4), or 0 if the
+/// byte does not start one.
+inline std::size_t utf8_length(std::string_view s, std::size_t i) {
+  const auto b = static_cast<unsigned char>(s[i]);
+  std::size_t n = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xE ? 3 : (b >> 3) == 0x1E ? 4 : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  for (std::size_t k = 1; k < n; ++k)
+    if ((static_cast<unsigned char>(s[i + k]) >> 6) != 0x2) return 0;
+  return n;
+}
+}  // namespace detail
+
+/// Text from the input made safe for a message: control bytes and bytes that
+/// are not valid UTF-8 become '?', and any run of more than 200 non-blank bytes
+/// (a megabyte token, a 100,000-digit number) is cut to its first 60 bytes
+/// followed by "...(N bytes)". A message never echoes binary data or a huge
+/// token raw.
+inline std::string printable(std::string_view s) {
+  constexpr std::size_t max_run = 200, keep = 60;
+  std::string o;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    if (s[i] == ' ') {
+      o += s[i++];
+      continue;
+    }
+    std::size_t e = i;
+    while (e < s.size() && s[e] != ' ') ++e;
+    const std::size_t run = e - i;
+    const std::size_t stop = run > max_run ? i + keep : e;
+    while (i < stop) {
+      const std::size_t n = detail::utf8_length(s, i);
+      const auto b = static_cast<unsigned char>(s[i]);
+      if (n == 0 || (n == 1 && (b < 0x20 || b == 0x7f))) {
+        o += b == '\t' ? ' ' : '?';
+        ++i;
+      } else if (i + n > stop) {
+        break;  // do not cut a UTF-8 character in two
+      } else {
+        o.append(s.substr(i, n));
+        i += n;
+      }
+    }
+    if (run > max_run) o += "...(" + std::to_string(run) + " bytes)";
+    i = e;
+  }
+  return o;
+}
 
 /// A position in a source: file, 1-based line and column (columns count bytes).
 struct location {
@@ -52,10 +101,13 @@ struct location {
 
 /// An error in a model file or during its run, located in the source.
 /// what() is `file:line:column: error: message`; excerpt() adds the line and a caret.
+/// The message is passed through printable(): no binary bytes, no huge tokens.
 class lang_error : public std::runtime_error {
  public:
   lang_error(location loc, std::string message)
-      : std::runtime_error(loc.str() + ": error: " + message), loc_(std::move(loc)), message_(std::move(message)) {}
+      : std::runtime_error(printable(loc.str()) + ": error: " + printable(message)),
+        loc_(std::move(loc)),
+        message_(printable(message)) {}
 
   /// Where the error is.
   const location& where() const noexcept { return loc_; }
@@ -117,6 +169,16 @@ inline std::string nearest(std::string_view word, const std::vector<std::string>
   std::string best;
   std::size_t bd = std::string::npos;
   if (word.size() > 200) return best;  // no typo of a catalog name is that long
+  // A non-ASCII character (a Cyrillic 'А' that looks like 'A') counts as one
+  // wrong character, not as its two to four bytes.
+  std::string w;
+  for (std::size_t i = 0; i < word.size();) {
+    const bool ascii = static_cast<unsigned char>(word[i]) < 0x80;
+    const std::size_t n = ascii ? 1 : std::max<std::size_t>(1, detail::utf8_length(word, i));
+    w += n == 1 ? word[i] : '\x01';
+    i += n;
+  }
+  word = w;
   for (const auto& c : candidates) {
     if (c.size() > 200) continue;
     const std::size_t d = edit_distance(word, c);

@@ -1,0 +1,95 @@
+#pragma once
+/// \file
+/// The plain types of a model-language run: how a session writes its results
+/// (run_settings), what it asks the application to plot (plot_request), the
+/// exception of an interrupted run, the scheme of a stage, one output column
+/// and the report of one stage.
+
+#include <csignal>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pradis/integrators/newmark.hpp"
+#include "pradis/integrators/simulation.hpp"
+#include "pradis/lang/source.hpp"
+#include "pradis/spatial/node_state.hpp"
+
+namespace pradis::lang {
+
+/// How a session writes its results.
+struct run_settings {
+  std::string output_dir = ".";  ///< directory for CSV, PNG and checkpoints ($SAVE/$RESTORE paths are relative to it)
+  std::string stem = "model";    ///< prefix of the output files
+  bool plot = true;              ///< false: 'DISP requests no PNG (session::plots() stays empty)
+  bool write_files = true;       ///< false: no CSV and no SAVE-interval checkpoints (tests)
+  std::ostream* log = nullptr;   ///< report lines (stages, files written), or none
+  /// A one-line progress display redrawn in place while a stage runs (for a
+  /// terminal: `pradis run` passes stderr when it is one), or none.
+  std::ostream* progress = nullptr;
+  /// Set to non-zero (by a signal handler: `pradis run` on SIGINT and SIGTERM)
+  /// to stop the run at the next step: run() then closes the results file with
+  /// the rows computed so far and throws lang::interrupted. Null: never stops.
+  const volatile std::sig_atomic_t* stop = nullptr;
+};
+
+/// A plot that a 'DISP asked for: the application draws it (the library does
+/// not run external programs; `pradis run` uses gnuplot, apps/common/gnuplot.hpp).
+struct plot_request {
+  std::vector<std::string> names;  ///< column labels (the CSV's columns after time)
+  std::string csv, png, title;     ///< data file (already written), image to draw, title
+};
+
+/// Thrown by session::run() when run_settings::stop was set: the run stopped at
+/// time(); the results file holds the rows computed until then.
+class interrupted : public std::runtime_error {
+ public:
+  /// The run stopped at simulated time t.
+  explicit interrupted(double t) : std::runtime_error("run interrupted"), t_(t) {}
+  /// Simulated time at which the run stopped.
+  double time() const noexcept { return t_; }
+
+ private:
+  double t_;
+};
+
+/// The integration scheme of a language stage: any member of the alpha family
+/// (SHTERM, NEWMARK, HHT, GALPHA), given by its four parameters, which the
+/// library's scheme classes have validated. The arithmetic is alpha_scheme's,
+/// so a stage computes exactly what the library's scheme of the same name does.
+class stage_scheme : public alpha_scheme {
+ public:
+  /// Prefix of the simulation's option messages (the session replaces it by the program name).
+  static constexpr std::string_view name = "STAGE";
+  /// PRADIS's Stoermer scheme (SHTERM).
+  stage_scheme() : stage_scheme(stoermer{}) {}
+  /// The scheme with the parameters of `s` (newmark, stoermer, hht, generalized_alpha).
+  explicit stage_scheme(const alpha_scheme& s) : stage_scheme(s.coefficients_set()) {}
+  /// The scheme with parameters taken from one of the library's schemes (not checked again).
+  explicit stage_scheme(const alpha_parameters& q) { p_ = q; }
+};
+
+/// One output variable (#OUTPUT line).
+struct output_column {
+  enum class kind { potential, work, statistic, angular_velocity, norm };
+  std::string label;
+  location loc;
+  kind what = kind::potential;
+  int node = 0, dof = 0, order = 1;  ///< potential: node, model DOF, 1 u / 2 v / 3 a
+  std::string element;               ///< work: instance name
+  int index = 0;                     ///< work: 1-based entry
+  std::string statistic;             ///< statistic: NSTEP, NITER, ...
+  rotation_node rotation{};          ///< angular_velocity ('W, component in order) and norm ('LQ)
+  std::string nodes;                 ///< 'W, 'LQ: the three node numbers as written, for the label
+};
+
+/// What one run stage did (for the report of `pradis run`).
+struct stage_report {
+  std::string label, program;
+  double t0 = 0, t1 = 0;
+  run_statistics stats;
+};
+
+}  // namespace pradis::lang
