@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pradis/assembly/assembler.hpp"
@@ -87,10 +88,12 @@ void apply_initial(const Model& m, element_context& ctx, std::size_t d, double v
 
 /// The initial conditions of the zero step: every element's zero_step()
 /// values (displacements, velocities), with conflict detection (code 90).
-/// `context_for(instance)` makes an element's context.
+/// `context_for(instance)` makes an element's context. Returns, per DOF, the
+/// instance that set its initial displacement (first) and velocity (second).
 template <class Model, class Context>
-void apply_initial_conditions(Model& m, global_state& s, const std::vector<char>& prescribed,
-                              const std::vector<std::string>& driver, Context&& context_for) {
+std::pair<std::vector<std::string>, std::vector<std::string>> apply_initial_conditions(
+    Model& m, global_state& s, const std::vector<char>& prescribed, const std::vector<std::string>& driver,
+    Context&& context_for) {
   const auto nd = static_cast<std::size_t>(m.dof_count());
   std::vector<std::string> set_u(nd), set_v(nd);
   m.for_each_instances([&](auto& vec) {
@@ -110,6 +113,7 @@ void apply_initial_conditions(Model& m, global_state& s, const std::vector<char>
       }
     }
   });
+  return {std::move(set_u), std::move(set_v)};
 }
 
 /// Consistent initial derivatives at the zero step. The unknown of each free
@@ -129,7 +133,7 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
                                       std::vector<double>& rhs, run_statistics& stats, diagnostics& log,
                                       Evaluate&& evaluate) {
   if constexpr (!Assembler::any_m && !Assembler::any_c) {
-    return {};
+    return std::vector<char>(static_cast<std::size_t>(as.equations()), 0);  // every DOF is algebraic
   } else {
     const int ne = as.equations();
     const auto& pat = as.pattern();
@@ -218,6 +222,30 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
       return {};
     }
     return kind;
+  }
+}
+
+/// Warns (diagnostics log) about initial conditions that the first step
+/// cannot keep: a displacement on an algebraic DOF (neither mass nor
+/// viscosity: its displacement follows from its equation), a velocity on a DOF
+/// without mass (replaced by the consistent velocity, or, on an algebraic DOF,
+/// by the one of the first step). `kind` as returned by initial_derivatives.
+template <class Model, class Assembler>
+void warn_lost_initial_conditions(const Model& m, const Assembler& as, const std::vector<char>& kind,
+                                  const std::vector<std::string>& set_u, const std::vector<std::string>& set_v,
+                                  diagnostics& log) {
+  if (kind.size() != static_cast<std::size_t>(as.equations())) return;
+  for (int i = 0; i < as.equations(); ++i) {
+    const auto d = static_cast<std::size_t>(as.dof_of(i));
+    const char k = kind[static_cast<std::size_t>(i)];
+    if (k == 0 && !set_u[d].empty())
+      log.write("warning: the initial displacement set by '" + set_u[d] + "' on DOF '" +
+                m.dof_name(static_cast<int>(d)) +
+                "' is lost after the first step: the DOF has neither mass nor viscosity, so its displacement "
+                "follows from its equation");
+    if (k != 1 && !set_v[d].empty())
+      log.write("warning: the initial velocity set by '" + set_v[d] + "' on DOF '" + m.dof_name(static_cast<int>(d)) +
+                "' is not kept: the DOF has no mass, so its velocity follows from its equation");
   }
 }
 

@@ -4,7 +4,7 @@
 /// DRLTU on the correction of the velocity, DABSI, DRLTI on the residual, per
 /// DOF scaled by its nominal potential and flow), full or modified Newton.
 ///
-/// Modified Newton (the default, newton_method::modified) keeps the Jacobian
+/// Modified Newton (newton_method::modified; the default is full Newton) keeps the Jacobian
 /// J = cu K + cv C + ca M and its factorisation across iterations and steps, as
 /// SUNDIALS IDA does (Hindmarsh et al., ACM TOMS 31 (2005), section 2.1):
 /// - iterations with a kept factorisation evaluate the flows only (the
@@ -12,9 +12,11 @@
 /// - from successive corrections d_1, ..., d_m (weighted max norm, 1 = the
 ///   correction test) it estimates the rate R = (|d_m| / |d_1|)^(1/(m-1)); the
 ///   Jacobian is refreshed at the current iterate when R > max_rate or when
-///   |d_m| R^(ITR - k) > 1 (the test would not pass within ITR iterations), and
-///   the correction test is applied to |d| max(1, R / (1 - R)), the remaining
-///   error of a linearly converging iteration;
+///   |d_m| R^(ITR - k) > 1 (the test would not pass within ITR iterations);
+///   a correction with a kept Jacobian passes the correction test only if
+///   |d| max(1, 10 R / (1 - R)) does: the error left by a linearly converging
+///   iteration, about R / (1 - R) |d|, is below a tenth of the tolerance (R of
+///   the last step for the first correction, else 1/2);
 /// - it is refreshed when the coefficients changed beyond coefficient_change
 ///   (a new step size or scheme), at the start of each stage and after the
 ///   model was (re)built;
@@ -104,7 +106,6 @@ class newton_solver {
       for (int k = 0;; ++k) {
         const bool jac = full || refresh;
         evaluate(jac, k);
-        if (jac) ++stats.jacobian_evaluations;
         bool residual_ok = true;
         for (int i = 0; i < ne && residual_ok; ++i) {
           const auto d = as.dof_of(i);
@@ -132,6 +133,7 @@ class newton_solver {
           refresh = false;
           with_this_j = 0;
           rate = -1;
+          last_rate_ = -1;
         }
         solver_.solve(rhs);
         ++stats.newton_iterations;
@@ -150,9 +152,18 @@ class newton_solver {
             first_norm = norm;
           } else if (first_norm > 0) {
             rate = std::pow(norm / first_norm, 1.0 / with_this_j);
-            if (rate < 1) factor = std::max(1.0, rate / (1 - rate));
+            last_rate_ = rate;
           }
           ++with_this_j;
+          // A correction with a kept Jacobian: the error left is about
+          // R / (1 - R) |d| (linear convergence); it must be below a tenth of
+          // the tolerance (R unknown: the rate of the last step, else 1/2). A
+          // correction with a Jacobian fresh at this iterate is a Newton step
+          // and is tested as under full Newton.
+          if (!jac) {
+            const double r = rate >= 0 ? rate : (last_rate_ >= 0 ? last_rate_ : 0.5);
+            factor = r < 1 ? std::max(1.0, 10 * r / (1 - r)) : std::numeric_limits<double>::infinity();
+          }
         }
         correction_ok = true;
         roundoff = true;
@@ -186,6 +197,7 @@ class newton_solver {
   Solver solver_;
   bool valid_ = false;
   jacobian_coefficients jac_c_{};
+  double last_rate_ = -1;  // the last rate estimate with the kept Jacobian (-1: none)
   global_state predictor_;
 };
 

@@ -30,7 +30,10 @@ struct newton_options {
   double drlti = 1e-3;   ///< DRLTI: relative tolerance on the residual, times the sum of |flows| on the DOF
   int itr = 5;           ///< ITR: maximum Newton iterations per step
   bool second = false;   ///< SECOND: force at least a second iteration
-  newton_method method = newton_method::full;  ///< full Newton or modified (Jacobian reuse)
+  /// Full Newton (the default: modified Newton's results differ within the
+  /// Newton tolerances, and some of the accuracy tests ask for more) or
+  /// modified Newton (Jacobian reuse, fewer factorisations and Jacobians).
+  newton_method method = newton_method::full;
   /// Modified Newton: refresh the Jacobian when the convergence rate estimated
   /// from successive corrections, (|d_m| / |d_1|)^(1/(m-1)), exceeds this
   /// (SUNDIALS IDA uses 0.9), or when the corrections at that rate would not

@@ -14,7 +14,8 @@
 /// The parts: options.hpp (options, statistics), concepts.hpp (Integrator,
 /// LinearSolver), newmark.hpp (the alpha family), newton.hpp (full and
 /// modified Newton), step_control.hpp (error test, step rules),
-/// initialisation.hpp (zero step), checkpoint.hpp (the checkpoint format).
+/// initialisation.hpp (zero step), checkpoint.hpp (the checkpoint format),
+/// failures.hpp (the messages of run failures).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -34,6 +35,7 @@
 #include "pradis/core/element.hpp"
 #include "pradis/integrators/checkpoint.hpp"
 #include "pradis/integrators/concepts.hpp"
+#include "pradis/integrators/failures.hpp"
 #include "pradis/integrators/initialisation.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/newton.hpp"
@@ -94,12 +96,9 @@ class simulation<model<Es...>, Scheme, Solver> {
       const double target = std::min(next_out, opt.end);
       bool clipped = false;
       const double h = choose_step(t_, target, h_nominal_, recommended_, opt, clipped);
-      if (!(t_ + h > t_)) {
-        error e(error_code::step_too_small,
-                "the step " + num(h) + " no longer advances the time " + num(t_) + " in double precision");
-        log_.write(e);
-        throw e;
-      }
+      if (!(t_ + h > t_))
+        raise(error(error_code::step_too_small,
+                    "the step " + num(h) + " no longer advances the time " + num(t_) + " in double precision"));
       const step_outcome outcome = step(h);
       if (outcome == step_outcome::error_rejected) {
         ++stats_.rejected_steps;
@@ -135,14 +134,21 @@ class simulation<model<Es...>, Scheme, Solver> {
   // ---- results --------------------------------------------------------------
   /// Current time.
   double time() const noexcept { return t_; }
-  /// Displacement, velocity, acceleration of a DOF at the current time.
-  double u(dof d) const { return s_.u(d.index); }
-  double v(dof d) const { return s_.v(d.index); }
-  double a(dof d) const { return s_.a(d.index); }
+  /// Displacement, velocity, acceleration of a DOF at the current time. Throw
+  /// invalid_model for a DOF outside the model (index out of range; a DOF of
+  /// another model with an index in range cannot be told apart) or before the
+  /// first stage.
+  double u(dof d) const { return s_.u(checked(d)); }
+  double v(dof d) const { return s_.v(checked(d)); }
+  double a(dof d) const { return s_.a(checked(d)); }
   /// Global state (all DOFs).
   const global_state& state() const noexcept { return s_; }
   /// Sum of flows on a DOF at the last evaluation (nonzero only on prescribed DOFs: the reaction).
-  double residual(dof d) const { return asm_.residual()(d.index); }
+  double residual(dof d) const {
+    const Eigen::Index i = checked(d);
+    if (i >= asm_.residual().size()) bad_dof(d);
+    return asm_.residual()(i);
+  }
   /// Cumulative statistics.
   const run_statistics& statistics() const noexcept { return stats_; }
   /// A statistic by its output-variable name: "NSTEP" (accepted steps), "NITER"
@@ -231,6 +237,17 @@ class simulation<model<Es...>, Scheme, Solver> {
 
  private:
   static std::string num(double x) { return detail::num(x); }
+  Eigen::Index checked(dof d) const {
+    if (d.index < 0 || d.index >= s_.u.size()) bad_dof(d);
+    return d.index;
+  }
+  [[noreturn]] void bad_dof(dof d) const {
+    throw error(error_code::invalid_model,
+                "DOF index " + std::to_string(d.index) +
+                    (started_ ? " is not a DOF of this model (it has " + std::to_string(s_.u.size()) + " DOFs)"
+                              : " asked for before the first stage has run"),
+                {}, {}, d.index);
+  }
   std::string_view scheme_label() const {
     if constexpr (requires { scheme_.label(); })
       return scheme_.label();
@@ -238,9 +255,7 @@ class simulation<model<Es...>, Scheme, Solver> {
       return Scheme::name;
   }
   [[noreturn]] void fail_option(const std::string& msg) {
-    error e(error_code::invalid_option, std::string(scheme_label()) + ": " + msg);
-    log_.write(e);
-    throw e;
+    raise(error(error_code::invalid_option, std::string(scheme_label()) + ": " + msg));
   }
 
   // ---- element-level phases ---------------------------------------------------
@@ -279,12 +294,15 @@ class simulation<model<Es...>, Scheme, Solver> {
     for (const auto& node : m_.rotation_nodes()) s_.u(node.dofs[3]) = 1.0;
     const std::vector<std::string> driver = detail::detect_sources(m_, prescribed_, log_);
     new_integration();
-    detail::apply_initial_conditions(m_, s_, prescribed_, driver, [&](auto& in) { return context_for(in); });
+    const auto [set_u, set_v] =
+        detail::apply_initial_conditions(m_, s_, prescribed_, driver, [&](auto& in) { return context_for(in); });
     detail::apply_sources(m_, s_, t_);
     build();
     started_ = true;
-    detail::initial_derivatives(m_, asm_, newton_.linear_solver(), s_, rhs_, stats_, log_,
-                                [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
+    const std::vector<char> kind =
+        detail::initial_derivatives(m_, asm_, newton_.linear_solver(), s_, rhs_, stats_, log_,
+                                    [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
+    detail::warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);
     newton_.invalidate();  // the solver holds the factorisation of the initial-derivative matrix
     s_.p = s_.a;  // the pseudo-acceleration starts at the consistent acceleration
     a_prev_ = s_.a;
@@ -326,29 +344,10 @@ class simulation<model<Es...>, Scheme, Solver> {
   }
 
   /// Names the DOF of a singular equation and the elements on it.
-  [[noreturn]] void rethrow_singular(const error& e) {
-    if (e.dof() < 0 || e.dof() >= asm_.equations()) {
-      log_.write(e);
-      throw e;
-    }
-    const int d = asm_.dof_of(static_cast<int>(e.dof()));
-    std::string on;
-    m_.for_each_instances([&](const auto& vec) {
-      for (const auto& in : vec)
-        if (std::find(in.dofs.begin(), in.dofs.end(), d) != in.dofs.end()) {
-          using T = std::remove_cvref_t<decltype(in.element)>;
-          if (!on.empty()) on += ", ";
-          on += std::string(T::passport.name) + " '" + in.name + "'";
-        }
-    });
-    std::string msg = e.code() == error_code::structurally_singular
-                          ? "DOF '" + m_.dof_name(d) + "' has no Jacobian entry: no element acts on it"
-                          : "the Newton matrix is singular at DOF '" + m_.dof_name(d) + "' (elements on it: " +
-                                (on.empty() ? std::string("none") : on) +
-                                "); a DOF needs stiffness, viscosity or mass, or a support";
-    error out(e.code(), msg + " [t = " + num(t_) + "]", {}, {}, d);
-    log_.write(out);
-    throw out;
+  [[noreturn]] void rethrow_singular(const error& e) { raise(detail::singular_error(m_, asm_, e, t_)); }
+  [[noreturn]] void raise(const error& e) {
+    log_.write(e);
+    throw e;
   }
 
   /// Evaluates the model. During step k (1-based) elements see NSTEP = k; at
@@ -356,6 +355,7 @@ class simulation<model<Es...>, Scheme, Solver> {
   void evaluate(const jacobian_coefficients& c, double h, bool jac, int niter = 0, bool in_step = false) {
     call_info info{t_, h, stats_.steps + (in_step ? 1 : 0), niter, jac, &log_, opt_.newton.dabsi};
     ++stats_.evaluations;
+    if (jac) ++stats_.jacobian_evaluations;
     asm_.evaluate(m_, s_, c, info);
   }
 
@@ -376,6 +376,7 @@ class simulation<model<Es...>, Scheme, Solver> {
     const newton_result r = newton_.solve(asm_, scheme_, s_, s0_, h, c, opt_.newton, m_.scales(), rhs_, stats_,
                                           [&](bool jac, int k) { evaluate(c, h, jac, k, true); });
     if (r.converged) {
+      check_finite(h);
       if (opt_.error_control && !error_accepts(h)) {
         s_ = s0_;
         t_ = t0;
@@ -396,6 +397,12 @@ class simulation<model<Es...>, Scheme, Solver> {
     return step_outcome::failed;
   }
 
+  /// A converged state must be finite: u, v and a of every free DOF (an
+  /// overflow, e.g. of u on a first-order DOF, whose flows stay finite).
+  void check_finite(double h) {
+    if (auto e = detail::non_finite_state(m_, asm_, s_, t_, h)) raise(*e);
+  }
+
   /// The local error test (step_control.hpp). Sets h_error_; returns false
   /// (redo with h_error_) when the test fails and the step is above SMIN and
   /// CONTROL; throws step_too_small when the step needed is below SMIN, naming
@@ -408,42 +415,18 @@ class simulation<model<Es...>, Scheme, Solver> {
     const double floor = std::max(opt_.smin, opt_.control);
     if (h <= floor * (1 + 1e-12)) {
       if (opt_.control > opt_.smin) return true;  // CONTROL: accept at the floor
-      error x(error_code::step_too_small,
-              "SMIN cannot reach the requested accuracy: local error " + num(e.worst_error) + " above tolerance " +
-                  num(e.worst_tolerance) + " on DOF '" + m_.dof_name(e.worst) + "' at t = " + num(t_) +
-                  " with step " + num(h),
-              {}, {}, e.worst);
-      log_.write(x);
-      throw x;
+      raise(error(error_code::step_too_small,
+                  "SMIN cannot reach the requested accuracy: local error " + num(e.worst_error) +
+                      " above tolerance " + num(e.worst_tolerance) + " on DOF '" + m_.dof_name(e.worst) +
+                      "' at t = " + num(t_) + " with step " + num(h),
+                  {}, {}, e.worst));
     }
     return false;
   }
 
   [[noreturn]] void fail_at_smin(double h) {
-    if (last_failure_) {
-      if (last_failure_->code() == error_code::singular_matrix) rethrow_singular(*last_failure_);
-      error e(last_failure_->code(),
-              last_failure_->message() + " (persists at SMIN = " + num(opt_.smin) + ", t = " + num(t_) + ")",
-              last_failure_->element_type(), last_failure_->instance(), last_failure_->dof());
-      log_.write(e);
-      throw e;
-    }
-    // Name the DOF with the largest residual at the last attempt.
-    int worst = -1;
-    double wr = -1;
-    for (int i = 0; i < asm_.equations(); ++i) {
-      const double r = std::abs(asm_.residual()(asm_.dof_of(i)));
-      if (!(r <= wr)) {
-        wr = r;
-        worst = asm_.dof_of(i);
-      }
-    }
-    error e(error_code::newton_failure,
-            "Newton does not converge at SMIN: step " + num(h) + " at t = " + num(t_) +
-                (worst >= 0 ? "; largest residual " + num(wr) + " on DOF '" + m_.dof_name(worst) + "'" : ""),
-            {}, {}, worst);
-    log_.write(e);
-    throw e;
+    if (last_failure_ && last_failure_->code() == error_code::singular_matrix) rethrow_singular(*last_failure_);
+    raise(detail::smin_error(m_, asm_, last_failure_, opt_.smin, t_, h));
   }
 
   /// Accepts the step: NEW state to OLD, element commit hooks, source reactions.
