@@ -6,6 +6,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <sstream>
 
 #include "pradis/elements/library.hpp"
@@ -149,5 +152,85 @@ TEST_SUITE("core/checkpoint") {
     simulation sc(b, stoermer{});
     std::stringstream out;
     CHECK_THROWS_AS(sc.save_checkpoint(out), error);  // nothing to save before the first stage
+  }
+
+  // The format (checkpoint.hpp): magic (8 bytes), version (uint32), payload
+  // length (uint64), payload, FNV-1a checksum of the payload (uint64).
+  TEST_CASE("a flipped bit, a truncated file, a negative step count or another version is refused: checkpoint damaged") {
+    two_body_model a;
+    build(a);
+    simulation sa(a, stoermer{});
+    sa.run(stage(0.05));
+    std::stringstream cp;
+    sa.save_checkpoint(cp);
+    const std::string full = cp.str();
+    constexpr std::size_t head = 8 + 4 + 8;
+    std::uint64_t n = 0;
+    std::memcpy(&n, full.data() + 12, sizeof n);
+    REQUIRE(full.size() == head + n + 8);
+    two_body_model b;
+    build(b);
+    simulation sb(b, stoermer{});
+    auto load = [&](const std::string& bytes) {
+      std::stringstream is(bytes);
+      sb.load_checkpoint(is);
+    };
+    auto refused = [&](const std::string& bytes, const char* why) {
+      CAPTURE(why);
+      try {
+        load(bytes);
+        FAIL("must refuse");
+      } catch (const error& e) {
+        CHECK(e.code() == error_code::io_error);
+        CHECK(std::string(e.what()).find(why) != std::string::npos);
+      }
+      CHECK(sb.time() == 0.0);  // the simulation is unchanged
+    };
+    // Every single flipped bit of the payload or the checksum is detected.
+    int undetected = 0;
+    for (std::size_t byte = head; byte < full.size(); byte += 7) {
+      std::string bad = full;
+      bad[byte] = static_cast<char>(bad[byte] ^ (1 << (byte % 8)));
+      std::stringstream is(bad);
+      try {
+        sb.load_checkpoint(is);
+        ++undetected;
+      } catch (const error& e) {
+        undetected += std::string(e.what()).find("checkpoint damaged") == std::string::npos;
+      }
+    }
+    CHECK(undetected == 0);
+    // Truncated anywhere after the magic.
+    for (std::size_t len : {std::size_t{10}, head, head + 9, full.size() / 2, full.size() - 1})
+      refused(full.substr(0, len), "checkpoint damaged: the file is truncated");
+    // A negative step count with a valid checksum: the value checks catch it.
+    {
+      std::string bad = full;
+      const std::int64_t steps = -5;
+      std::memcpy(bad.data() + head + 4 * 8, &steps, sizeof steps);  // fingerprint, t, h, successes, steps
+      const std::uint64_t sum = pradis::detail::fnv1a(bad.data() + head, n);
+      std::memcpy(bad.data() + head + n, &sum, sizeof sum);
+      refused(bad, "checkpoint damaged: a negative count");
+    }
+    // A non-finite time with a valid checksum.
+    {
+      std::string bad = full;
+      const double t = std::numeric_limits<double>::quiet_NaN();
+      std::memcpy(bad.data() + head + 8, &t, sizeof t);
+      const std::uint64_t sum = pradis::detail::fnv1a(bad.data() + head, n);
+      std::memcpy(bad.data() + head + n, &sum, sizeof sum);
+      refused(bad, "checkpoint damaged: its time is not finite");
+    }
+    // Another format version, and the unversioned format of earlier pradis.
+    {
+      std::string bad = full;
+      const std::uint32_t v = checkpoint_version + 1;
+      std::memcpy(bad.data() + 8, &v, sizeof v);
+      refused(bad, "checkpoint version 3 cannot be read; this pradis reads version 2");
+      refused("PRADCK01" + full.substr(8), "checkpoint version 1");
+    }
+    // Bytes after the checksum are not read (a session appends its record there).
+    load(full + "PRLANG01");
+    CHECK(sb.time() == 0.05);
   }
 }

@@ -12,6 +12,8 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+
 #include <array>
 #include <optional>
 #include <string>
@@ -233,6 +235,7 @@ TEST_CASE("lifecycle: NEWINT, zero step, steps with NSTEP and NITER, commit, NEW
   simulation sim(m, newmark{});
   run_options o;
   o.end = 0.03;  // three steps of 0.01
+  o.newton.method = newton_method::full;  // the default: a fresh Jacobian at every evaluation (modified: below)
   const auto st = sim.run(o);
   REQUIRE(st.steps == 3);
   REQUIRE(ev.size() >= 6);
@@ -384,4 +387,30 @@ TEST_CASE("DOFs and elements added between stages start at rest; the rest of the
   // x carried on from its state at 0.5 (exact solution within the trapezoidal phase error).
   CHECK(sim.u(x) == doctest::Approx(0.1 * std::cos(10.0 * 0.6)).epsilon(1e-2));
   CHECK(sim.statistics().steps == 60);
+}
+
+TEST_CASE("lifecycle under modified Newton: only the evaluations that refresh the Jacobian ask for it") {
+  // Same model; modified Newton. The first evaluation of the stage
+  // assembles the Jacobian (a fresh one per stage); the linear model at a constant
+  // step needs no other, so every later evaluation asks for the flows only.
+  life_model m;
+  const dof x = m.add_dof("x");
+  m.add<point_mass>("mass", {1.0}, x);
+  m.add<linear_spring>("spring", {100.0}, x, m.ground());
+  m.add<initial_displacement>("x0", {0.1}, x);
+  const auto pr = m.add<lifecycle_probe>("probe", {}, x);
+  std::vector<event> ev;
+  m.element(pr).events = &ev;
+  simulation sim(m, newmark{});
+  run_options o;
+  o.end = 0.03;
+  o.newton.method = newton_method::modified;
+  sim.run(o);
+  std::vector<bool> in_steps;  // want_jacobian of the evaluations of steps 1..3, in order
+  for (const auto& e : ev)
+    if (e.kind == event::evaluate && e.nstep >= 1 && e.step > 0) in_steps.push_back(e.want_jacobian);
+  REQUIRE(in_steps.size() >= 6);  // at least a correction and its check per step
+  CHECK(in_steps[0]);
+  CHECK(std::count(in_steps.begin(), in_steps.end(), true) == 1);
+  CHECK(sim.statistics().steps == 3);
 }

@@ -199,7 +199,8 @@ TEST_CASE("run statistics and statistic() by output-variable name") {
   CHECK(s1.steps == 50);
   CHECK(s1.rejected_steps == 0);
   CHECK(s1.newton_iterations >= s1.steps);  // at least one correction per step
-  CHECK(s1.factorizations >= s1.newton_iterations);
+  CHECK(s1.factorizations >= s1.newton_iterations);  // full Newton (the default): one per iteration
+  CHECK(s1.jacobian_evaluations <= s1.evaluations);
   CHECK(s1.evaluations > s1.steps);
   CHECK(s1.last_step == doctest::Approx(0.01).epsilon(1e-9));
   const run_statistics s2 = sim.run(stage(0.8));
@@ -210,6 +211,8 @@ TEST_CASE("run statistics and statistic() by output-variable name") {
   CHECK(sim.statistic("NSTEP") == 80.0);
   CHECK(sim.statistic("NITTOT") == static_cast<double>(all.newton_iterations));
   CHECK(sim.statistic("NFACT") == static_cast<double>(all.factorizations));
+  CHECK(sim.statistic("NJAC") == static_cast<double>(all.jacobian_evaluations));
+  CHECK(sim.statistic("NEVAL") == static_cast<double>(all.evaluations));
   CHECK(sim.statistic("NREJ") == 0.0);
   CHECK(sim.statistic("NITER") >= 1.0);
   CHECK(sim.statistic("NITER") <= 12.0);

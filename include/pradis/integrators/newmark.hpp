@@ -19,11 +19,13 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <concepts>
 #include <string>
 #include <string_view>
 
 #include "pradis/assembly/assembler.hpp"
 #include "pradis/core/error.hpp"
+#include "pradis/integrators/concepts.hpp"
 
 namespace pradis {
 
@@ -136,13 +138,37 @@ class generalized_alpha : public alpha_scheme {
   double rho_;
 };
 
-/// What the simulation needs from an integration scheme.
+/// A scheme of the alpha family: the error control uses its parameters.
 template <class S>
-concept Integrator = requires(const S s, double x, double& r) {
-  { S::name } -> std::convertible_to<std::string_view>;
-  { s.coefficients(x) } -> std::same_as<jacobian_coefficients>;
-  { s.predict(x, x, x, x, x) } -> std::same_as<double>;
-  s.complete(x, x, x, x, x, x, r, r, r);
+concept AlphaFamilyIntegrator = Integrator<S> && requires(const S s) {
+  { s.coefficients_set() } -> std::convertible_to<alpha_parameters>;
+};
+
+/// Any member of the alpha family chosen at run time: holds the four
+/// parameters of the scheme it was made from (newmark, stoermer, hht,
+/// generalized_alpha; implicit conversion) and computes exactly what that
+/// scheme does. With it a simulation can switch scheme between stages
+/// (simulation::set_scheme) without a checkpoint round trip:
+///     simulation<M, alpha_family> sim(m, newmark{});
+///     sim.run({.end = 1});
+///     sim.set_scheme(hht(-0.1));
+///     sim.run({.end = 2});
+class alpha_family : public alpha_scheme {
+ public:
+  static constexpr std::string_view name = "ALPHA";
+  /// Newmark's average acceleration.
+  alpha_family() : alpha_family(newmark{}) {}
+  /// The scheme with the (validated) parameters of `s`; messages carry its name.
+  template <class S>
+    requires std::derived_from<S, alpha_scheme>
+  alpha_family(const S& s) : label_(S::name) {  // NOLINT: implicit by design
+    p_ = s.coefficients_set();
+  }
+  /// The name of the scheme it was made from (NEWMARK, SHTERM, HHT, GALPHA).
+  std::string_view label() const noexcept { return label_; }
+
+ private:
+  std::string_view label_;
 };
 
 }  // namespace pradis

@@ -1,0 +1,252 @@
+#pragma once
+/// \file
+/// Consistent initialisation of pradis::simulation at the zero step:
+/// prescribed DOFs (ground, kinematic sources), initial conditions with
+/// conflict detection (code 90) and consistent initial derivatives (initial
+/// accelerations of inertial DOFs, velocities of first-order DOFs).
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pradis/assembly/assembler.hpp"
+#include "pradis/core/diagnostics.hpp"
+#include "pradis/core/element.hpp"
+#include "pradis/core/error.hpp"
+#include "pradis/integrators/options.hpp"
+
+namespace pradis::detail {
+
+/// Marks the ground and the DOFs driven by kinematic sources as prescribed;
+/// two sources on one DOF (or a source on the ground) is code 90. Returns, per
+/// DOF, what drives it (for messages).
+template <class Model>
+std::vector<std::string> detect_sources(Model& m, std::vector<char>& prescribed, diagnostics& log) {
+  const int nd = m.dof_count();
+  prescribed.assign(static_cast<std::size_t>(nd), 0);
+  prescribed[0] = 1;
+  std::vector<std::string> driver(static_cast<std::size_t>(nd));
+  driver[0] = "the ground";
+  m.for_each_instances([&](auto& vec) {
+    for (auto& in : vec) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (PrescribesMotion<E>) {
+        const auto d = static_cast<std::size_t>(in.dofs[0]);
+        if (prescribed[d]) {
+          error e(error_code::conflicting_initial,
+                  "DOF '" + m.dof_name(static_cast<int>(d)) + "' is already driven by " + driver[d],
+                  std::string(E::passport.name), in.name, static_cast<long>(d));
+          log.write(e);
+          throw e;
+        }
+        prescribed[d] = 1;
+        driver[d] = std::string(E::passport.name) + " '" + in.name + "'";
+      }
+    }
+  });
+  return driver;
+}
+
+/// Sets the potentials of the DOFs driven by kinematic sources at time t.
+template <class Model>
+void apply_sources(Model& m, global_state& s, double t) {
+  m.for_each_instances([&](auto& vec) {
+    for (auto& in : vec) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (PrescribesMotion<E>) {
+        const kinematics k = in.element.motion(t);
+        const auto d = static_cast<Eigen::Index>(in.dofs[0]);
+        s.u(d) = k.u;
+        s.v(d) = k.v;
+        s.a(d) = k.a;
+        s.p(d) = k.a;
+      }
+    }
+  });
+}
+
+/// One initial value of an element's zero step: refused (code 90) on a driven
+/// DOF or when another element set a different value on the same DOF.
+template <class Model>
+void apply_initial(const Model& m, element_context& ctx, std::size_t d, double value, Eigen::VectorXd& target,
+                   std::vector<std::string>& set_by, const std::vector<std::string>& driver,
+                   const std::vector<char>& prescribed, const char* what) {
+  if (prescribed[d])
+    ctx.fail(error_code::conflicting_initial, std::string("initial ") + what + " on DOF '" +
+                                                  m.dof_name(static_cast<int>(d)) + "', which is driven by " + driver[d]);
+  const auto i = static_cast<Eigen::Index>(d);
+  if (!set_by[d].empty() && target(i) != value)
+    ctx.fail(error_code::conflicting_initial,
+             std::string("initial ") + what + " " + num(value) + " on DOF '" + m.dof_name(static_cast<int>(d)) +
+                 "' conflicts with " + num(target(i)) + " set by '" + set_by[d] + "'");
+  target(i) = value;
+  set_by[d] = std::string(ctx.instance());
+}
+
+/// The initial conditions of the zero step: every element's zero_step()
+/// values (displacements, velocities), with conflict detection (code 90).
+/// `context_for(instance)` makes an element's context. Returns, per DOF, the
+/// instance that set its initial displacement (first) and velocity (second).
+template <class Model, class Context>
+std::pair<std::vector<std::string>, std::vector<std::string>> apply_initial_conditions(
+    Model& m, global_state& s, const std::vector<char>& prescribed, const std::vector<std::string>& driver,
+    Context&& context_for) {
+  const auto nd = static_cast<std::size_t>(m.dof_count());
+  std::vector<std::string> set_u(nd), set_v(nd);
+  m.for_each_instances([&](auto& vec) {
+    for (auto& in : vec) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (HasZeroStep<E>) {
+        element_context ctx = context_for(in);
+        ctx.newint = true;
+        initial_values<element_traits<E>::n> iv;
+        in.element.zero_step(iv, ctx);
+        for (int k = 0; k < element_traits<E>::n; ++k) {
+          const auto d = static_cast<std::size_t>(in.dofs[static_cast<std::size_t>(k)]);
+          if (iv.has_displacement(k))
+            apply_initial(m, ctx, d, iv.displacement(k), s.u, set_u, driver, prescribed, "displacement");
+          if (iv.has_velocity(k)) apply_initial(m, ctx, d, iv.velocity(k), s.v, set_v, driver, prescribed, "velocity");
+        }
+      }
+    }
+  });
+  return {std::move(set_u), std::move(set_v)};
+}
+
+/// Consistent initial derivatives at the zero step. The unknown of each free
+/// DOF is its acceleration if it has inertia (dF/da diagonal nonzero), else its
+/// velocity if it has viscosity (a first-order DOF, e.g. the series point of a
+/// spring and a damper), else nothing (an algebraic DOF: its equation is met
+/// by Newton at the first step). One Newton step on F(u0, v0, a0, 0) = 0 with
+/// J = M (inertial columns) + C (viscous columns) + I (algebraic columns).
+/// Without it the trapezoidal u-v relation of the Newmark family would carry
+/// an inconsistent start as an undamped oscillation of v.
+/// `evaluate(c, want_jacobian)` evaluates the model at s into `as`. Returns
+/// the kind of each equation (1 inertial, 2 viscous, 0 algebraic), or an empty
+/// vector when no consistent derivatives could be found (a warning is logged
+/// and the free DOFs start with zero accelerations).
+template <class Model, class Assembler, class Solver, class Evaluate>
+std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, global_state& s,
+                                      std::vector<double>& rhs, run_statistics& stats, diagnostics& log,
+                                      Evaluate&& evaluate) {
+  if constexpr (!Assembler::any_m && !Assembler::any_c) {
+    return std::vector<char>(static_cast<std::size_t>(as.equations()), 0);  // every DOF is algebraic
+  } else {
+    const int ne = as.equations();
+    const auto& pat = as.pattern();
+    evaluate(jacobian_coefficients{0, 0, 1}, true);
+    std::vector<double> mvals(as.values().begin(), as.values().end());
+    std::vector<double> cvals(mvals.size(), 0.0);
+    for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
+    if constexpr (Assembler::any_c) {
+      evaluate(jacobian_coefficients{0, 1, 0}, true);
+      cvals.assign(as.values().begin(), as.values().end());
+    }
+    std::vector<char> kind(static_cast<std::size_t>(ne), 0);
+    for (int i = 0; i < ne; ++i) {
+      const int q = pat.find(i, i);
+      if (q >= 0 && mvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(i)] = 1;
+      else if (q >= 0 && cvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(i)] = 2;
+    }
+    // Rotational nodes: the hidden q4's unknown is its acceleration, from the norm
+    // equation differentiated once more, d2(Lq)/dt2 = 0, i.e.
+    // (q . q'' + |q'|^2 - (q . q')^2 / Lq^2) / Lq = 0: without it q4'' would start
+    // inconsistent and the trapezoidal rule would carry the error on as an
+    // undamped alternation of q'' (which enters the moments through E(q) q'').
+    // q1..q3 of a node are inertial when the node's inertia block has an entry in
+    // their row (their own diagonal E(q)-entry may vanish, e.g. at 180 degrees).
+    for (const auto& node : m.rotation_nodes()) {
+      const int e4 = as.equation_of(node.dofs[3]);
+      if (e4 < 0) continue;
+      kind[static_cast<std::size_t>(e4)] = 1;
+      for (int r = 0; r < 3; ++r) {
+        const int er = as.equation_of(node.dofs[static_cast<std::size_t>(r)]);
+        if (er < 0) continue;
+        for (int c = 0; c < 4; ++c) {
+          const int ec = as.equation_of(node.dofs[static_cast<std::size_t>(c)]);
+          const int q = ec >= 0 ? pat.find(er, ec) : -1;
+          if (q >= 0 && mvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(er)] = 1;
+        }
+      }
+    }
+    std::vector<double> j(mvals.size(), 0.0);
+    for (int r = 0; r < ne; ++r)
+      for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
+        const int c = pat.col[static_cast<std::size_t>(q)];
+        const auto sq = static_cast<std::size_t>(q);
+        const char k = kind[static_cast<std::size_t>(c)];
+        j[sq] = k == 1 ? mvals[sq] : (k == 2 ? cvals[sq] : (r == c ? 1.0 : 0.0));
+      }
+    for (const auto& node : m.rotation_nodes()) {
+      const int e4 = as.equation_of(node.dofs[3]);
+      if (e4 < 0) continue;
+      Eigen::Vector4d q, qd, qdd;
+      for (int k = 0; k < 4; ++k) {
+        const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
+        q(k) = s.u(d);
+        qd(k) = s.v(d);
+        qdd(k) = s.a(d);
+      }
+      const double lq = q.norm(), g = q.dot(qd);
+      for (int qq = pat.row_ptr[static_cast<std::size_t>(e4)]; qq < pat.row_ptr[static_cast<std::size_t>(e4) + 1]; ++qq)
+        j[static_cast<std::size_t>(qq)] = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        const int ec = as.equation_of(node.dofs[static_cast<std::size_t>(k)]);
+        if (ec >= 0) j[static_cast<std::size_t>(pat.find(e4, ec))] = q(k) / lq;
+      }
+      rhs[static_cast<std::size_t>(e4)] = -(q.dot(qdd) + qd.squaredNorm() - g * g / (lq * lq)) / lq;
+    }
+    try {
+      solver.factorize(j);
+      ++stats.factorizations;
+      solver.solve(rhs);
+      bool finite = true;
+      for (double x : rhs) finite = finite && std::isfinite(x);
+      if (!finite) throw error(error_code::singular_matrix, "non-finite initial derivatives");
+      for (int i = 0; i < ne; ++i) {
+        const auto d = as.dof_of(i);
+        const double z = rhs[static_cast<std::size_t>(i)];
+        if (kind[static_cast<std::size_t>(i)] == 1) s.a(d) += z;
+        if (kind[static_cast<std::size_t>(i)] == 2) s.v(d) += z;
+      }
+    } catch (const error& e) {
+      if (e.code() != error_code::singular_matrix) throw;
+      std::string where =
+          e.dof() >= 0 && e.dof() < ne ? " (DOF '" + m.dof_name(as.dof_of(static_cast<int>(e.dof()))) + "')" : "";
+      log.write("warning: no consistent initial derivatives" + where +
+                ": the run starts with zero initial accelerations on the free DOFs");
+      for (int i = 0; i < ne; ++i) s.a(as.dof_of(i)) = 0;
+      return {};
+    }
+    return kind;
+  }
+}
+
+/// Warns (diagnostics log) about initial conditions that the first step
+/// cannot keep: a displacement on an algebraic DOF (neither mass nor
+/// viscosity: its displacement follows from its equation), a velocity on a DOF
+/// without mass (replaced by the consistent velocity, or, on an algebraic DOF,
+/// by the one of the first step). `kind` as returned by initial_derivatives.
+template <class Model, class Assembler>
+void warn_lost_initial_conditions(const Model& m, const Assembler& as, const std::vector<char>& kind,
+                                  const std::vector<std::string>& set_u, const std::vector<std::string>& set_v,
+                                  diagnostics& log) {
+  if (kind.size() != static_cast<std::size_t>(as.equations())) return;
+  for (int i = 0; i < as.equations(); ++i) {
+    const auto d = static_cast<std::size_t>(as.dof_of(i));
+    const char k = kind[static_cast<std::size_t>(i)];
+    if (k == 0 && !set_u[d].empty())
+      log.write("warning: the initial displacement set by '" + set_u[d] + "' on DOF '" +
+                m.dof_name(static_cast<int>(d)) +
+                "' is lost after the first step: the DOF has neither mass nor viscosity, so its displacement "
+                "follows from its equation");
+    if (k != 1 && !set_v[d].empty())
+      log.write("warning: the initial velocity set by '" + set_v[d] + "' on DOF '" + m.dof_name(static_cast<int>(d)) +
+                "' is not kept: the DOF has no mass, so its velocity follows from its equation");
+  }
+}
+
+}  // namespace pradis::detail

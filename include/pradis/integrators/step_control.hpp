@@ -1,0 +1,106 @@
+#pragma once
+/// \file
+/// Step-size control of pradis::simulation: the local error test of a
+/// converged step (PRADIS's velocity-based estimate, per-DOF tolerances scaled
+/// by the DOFs' nominal potentials), the three-branch rule for the next step,
+/// the growth of the nominal step without error control and the choice of a
+/// step that meets the next output time.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "pradis/assembly/assembler.hpp"
+#include "pradis/core/domain.hpp"
+#include "pradis/integrators/newmark.hpp"
+#include "pradis/integrators/options.hpp"
+
+namespace pradis {
+
+/// The result of the local error test of one step.
+struct error_test {
+  bool passed = true;    ///< the local error is within the tolerance on every DOF
+  double h_next = 0;     ///< the step the rule proposes next (or for the redo)
+  int worst = -1;        ///< the DOF with the smallest tolerance / error ratio, or -1
+  double worst_error = 0, worst_tolerance = 0;  ///< its estimate and tolerance
+};
+
+/// Local error test of a converged step from s0 to s (step h).
+/// First-order schemes (Stoermer, Newmark with gamma != 1/2, and schemes
+/// outside the alpha family): predictor v_p = v_n + h a_n (PREDICT: with a
+/// linearly extrapolated from a_prev over h_prev), lp = |v_p - v| / 2.
+/// Second-order members of the alpha family: lp = h |beta - 1/6| |a_{n+1} - a_n|,
+/// the displacement error estimate of the Newmark family per unit step
+/// (velocity units, O(h^2) like PRADIS's). Per DOF lp <= DABSX potential +
+/// DRLTX |v|; r = min tolerance / lp; next step c h r (r < 1/4), c h sqrt(r)
+/// (r <= 7), c h r^(1/4), c = 0.8, clamped to [max(SMIN, CONTROL), SMAX].
+template <Integrator Scheme, class Assembler>
+error_test local_error_test(const Scheme& scheme, const Assembler& as, const global_state& s, const global_state& s0,
+                            const Eigen::VectorXd& a_prev, double h_prev, double h, const run_options& opt,
+                            const std::vector<dof_scale>& scales) {
+  bool second = false;
+  double beta = 0;
+  if constexpr (AlphaFamilyIntegrator<Scheme>) {
+    const alpha_parameters q = scheme.coefficients_set();
+    second = std::abs(q.gamma - 0.5 - (q.alpha_f - q.alpha_m)) < 1e-12;
+    beta = q.beta;
+  }
+  error_test out;
+  double r = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < as.equations(); ++i) {
+    const auto d = as.dof_of(i);
+    double lp;
+    if (second) {
+      lp = h * std::abs(beta - 1.0 / 6.0) * std::abs(s.a(d) - s0.a(d));
+    } else {
+      double ap = s0.a(d);
+      if (opt.predict && h_prev > 0 && a_prev.size() == s0.a.size()) ap += (s0.a(d) - a_prev(d)) * h / h_prev;
+      lp = 0.5 * std::abs(s0.v(d) + h * ap - s.v(d));
+    }
+    const double tol = opt.dabsx * scales[static_cast<std::size_t>(d)].potential + opt.drltx * std::abs(s.v(d));
+    if (lp > 0 && tol / lp < r) {
+      r = tol / lp;
+      out.worst = d;
+      out.worst_error = lp;
+      out.worst_tolerance = tol;
+    }
+  }
+  constexpr double c = 0.8;
+  const double f = r < 0.25 ? r : (r <= 7.0 ? std::sqrt(r) : std::pow(r, 0.25));
+  const double floor = std::max(opt.smin, opt.control);
+  out.h_next = std::clamp(std::isfinite(f) ? c * h * f : opt.smax, std::min(floor, opt.smax), opt.smax);
+  out.passed = r >= 1.0;
+  return out;
+}
+
+/// Nominal step without error control: doubled (up to SMAX) after three
+/// successive full steps.
+inline void grow_nominal_step(double& h_nominal, int& successes, double smax) {
+  if (h_nominal < smax && ++successes >= 3) {
+    h_nominal = std::min(2 * h_nominal, smax);
+    successes = 0;
+  }
+}
+
+/// The step to take from t towards `target` (the next output time or END):
+/// the nominal step, or the element-recommended one (STEPMD, unless IGNORE),
+/// ended exactly at the target when it would reach it, and two equal steps
+/// rather than a full one and a sliver. `clipped`: the step ends at the target.
+inline double choose_step(double t, double target, double h_nominal, double recommended, const run_options& opt,
+                          bool& clipped) {
+  double h = h_nominal;
+  if (!opt.ignore && recommended < h) h = std::max(recommended, opt.smin);
+  clipped = false;
+  const double remaining = target - t;
+  if (t + h >= target - 1e-9 * h) {
+    h = remaining;
+    clipped = true;
+  } else if (remaining < 2 * h) {
+    h = 0.5 * remaining;
+  }
+  return h;
+}
+
+}  // namespace pradis
