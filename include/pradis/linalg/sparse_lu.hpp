@@ -5,7 +5,8 @@
 /// rows delayed, symbolic factorisation once per pattern, then equilibrated, allocation-free
 /// numeric refactorisations and solves with residual check, iterative refinement and an
 /// optional condition estimate. Pieces: lu_statistics.hpp (figures and report),
-/// lu_symbolic.hpp (symbolic phase), lu_substitution.hpp (triangular solves),
+/// lu_symbolic.hpp (symbolic phase), lu_numeric.hpp (equilibration, elimination),
+/// lu_substitution.hpp (triangular solves),
 /// lu_condition.hpp (condition estimate).
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 
 #include "pradis/core/error.hpp"
 #include "pradis/linalg/lu_condition.hpp"
+#include "pradis/linalg/lu_numeric.hpp"
 #include "pradis/linalg/lu_statistics.hpp"
 #include "pradis/linalg/lu_substitution.hpp"
 #include "pradis/linalg/lu_symbolic.hpp"
@@ -236,45 +238,8 @@ class sparse_lu {
     const auto t0 = std::chrono::steady_clock::now();
     factorized_ = false;
     const int n = stats_.n;
-    const int* const rp = pattern_.row_ptr.data();
-    const int* const ac = pattern_.col.data();
-
-    // Row scales (powers of two) and rejection of NaN/Inf input.
-    for (int r = 0; r < n; ++r) {
-      double m = 0;
-      for (int q = rp[r]; q < rp[r + 1]; ++q) {
-        const double v = values[q];
-        if (!std::isfinite(v))
-          throw error(error_code::non_finite,
-                      "matrix entry (row " + std::to_string(r) + ", column " + std::to_string(ac[q]) + ") is " + fmt(v),
-                      {}, {}, r);
-        m = std::max(m, std::abs(v));
-      }
-      rs_[r] = equilibrate ? inverse_power_of_two(m) : 1.0;
-    }
-    // Column scales of the row-scaled matrix.
-    if (equilibrate) {
-      std::fill(cs_.begin(), cs_.end(), 0.0);
-      for (int r = 0; r < n; ++r)
-        for (int q = rp[r]; q < rp[r + 1]; ++q) cs_[ac[q]] = std::max(cs_[ac[q]], rs_[r] * std::abs(values[q]));
-      for (int j = 0; j < n; ++j) cs_[j] = inverse_power_of_two(cs_[j]);
-    } else {
-      std::fill(cs_.begin(), cs_.end(), 1.0);
-    }
-    // The equilibrated values (kept for residuals), their row scales (pivot test) and row
-    // 1-norms (backward error).
-    for (int r = 0; r < n; ++r) {
-      double m = 0, s1 = 0;
-      for (int q = rp[r]; q < rp[r + 1]; ++q) {
-        const double v = values[q] * rs_[r] * cs_[ac[q]];
-        a_val_[q] = v;
-        m = std::max(m, std::abs(v));
-        s1 += std::abs(v);
-      }
-      row_scale_[r] = m > 0 ? m : 1.0;
-      row_norm1_[r] = s1;
-    }
-
+    detail::equilibrate(pattern_, values, equilibrate, rs_.data(), cs_.data(), a_val_.data(), row_scale_.data(),
+                        row_norm1_.data());
     const double threshold = static_pivoting ? std::max(pivot_tolerance, perturbation) : pivot_tolerance;
     if (delay_zero_diagonals) delay_new_weak_rows(threshold);
 
@@ -282,48 +247,21 @@ class sparse_lu {
     std::fill(f_val_.begin(), f_val_.end(), 0.0);
     for (std::size_t q = 0; q < a_val_.size(); ++q) fv[lu_.a_map[q]] += a_val_[q];
 
-    long perturbed = 0;
-    int first_perturbed = -1;
-    double growth = 0;
-    double* const w = work_.data();
-    const int* const fc = lu_.f_col.data();
-    const int* const fp = lu_.f_ptr.data();
-    const int* const dp = lu_.d_pos.data();
-    for (int i = 0; i < n; ++i) {
-      const int b = fp[i], d = dp[i], e = fp[i + 1];
-      for (int p = b; p < e; ++p) w[fc[p]] = fv[p];
-      for (int p = b; p < d; ++p) {
-        const int k = fc[p];
-        const double l = w[k] / fv[dp[k]];
-        w[k] = l;
-        const int ke = fp[k + 1];
-        for (int q = dp[k] + 1; q < ke; ++q) w[fc[q]] -= l * fv[q];
-      }
-      double umax = 0;
-      for (int p = b; p < d; ++p) fv[p] = w[fc[p]];
-      for (int p = d; p < e; ++p) {
-        const double v = w[fc[p]];
-        fv[p] = v;
-        umax = std::max(umax, std::abs(v));
-      }
-      const int r = lu_.perm[i];
-      const double piv = fv[d];
-      if (!std::isfinite(piv) || !std::isfinite(umax))
-        throw_singular(r, "pivot " + fmt(piv) + " of original row " + std::to_string(r) + " (elimination step " +
-                              std::to_string(i) + ") is not finite: element growth after tiny earlier pivots");
-      const double scale = std::max(row_scale_[r], umax);
-      growth = std::max(growth, umax / row_scale_[r]);
-      if (!(std::abs(piv) > threshold * scale)) {
-        if (!static_pivoting)
-          throw_singular(r, "pivot " + fmt(piv) + " of original row " + std::to_string(r) + " (elimination step " +
-                                std::to_string(i) + ", row scale " + fmt(scale) + ") is zero or tiny");
-        fv[d] = (piv < 0 ? -perturbation : perturbation) * scale;
-        if (perturbed++ == 0) first_perturbed = r;
-      }
+    const detail::elimination_result el = detail::eliminate(lu_, fv, work_.data(), row_scale_.data(), threshold,
+                                                            perturbation, static_pivoting);
+    if (el.failed_step >= 0) {
+      const int r = lu_.perm[el.failed_step];
+      throw_singular(r, "pivot " + fmt(el.failed_pivot) + " of original row " + std::to_string(r) +
+                            " (elimination step " + std::to_string(el.failed_step) + ", row scale " +
+                            fmt(el.failed_scale) + ") is " +
+                            (std::isfinite(el.failed_pivot) ? "zero or tiny"
+                                                            : "not finite: element growth after tiny earlier pivots"));
     }
+    const long perturbed = el.perturbed;
+    const int first_perturbed = el.first_perturbed;
     stats_.perturbed_pivots = perturbed;
     stats_.first_perturbed_row = first_perturbed;
-    stats_.max_growth = growth;
+    stats_.max_growth = el.growth;
     stats_.condition_estimate = 0;
     stats_.condition_warning_level = condition_warning_level;
     factorized_ = true;
@@ -432,15 +370,6 @@ class sparse_lu {
   bool factorized() const noexcept { return factorized_; }
 
  private:
-  /// 2^-e with m = f 2^e, f in [0.5, 1) (so m 2^-e is in [0.5, 1)); 1 for m == 0. The exponent
-  /// is clamped so that the scale is a normal, finite double.
-  static double inverse_power_of_two(double m) {
-    if (!(m > 0)) return 1.0;
-    int e = 0;
-    (void)std::frexp(m, &e);
-    return std::ldexp(1.0, std::clamp(-e, -1022, 1023));
-  }
-
   /// Symbolic phase for the current delayed rows (base order with delayed rows moved), and the
   /// factor value storage.
   void build_structure() {
