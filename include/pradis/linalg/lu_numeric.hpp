@@ -4,7 +4,10 @@
 /// row-oriented elimination with the static pivot test. Allocation-free.
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
 
@@ -15,48 +18,66 @@
 namespace pradis::linalg::detail {
 
 /// 2^-e with m = f 2^e, f in [0.5, 1) (so m 2^-e is in [0.5, 1)); 1 for m == 0. The exponent
-/// is clamped so that the scale is a normal, finite double.
+/// is clamped so that the scale is a normal, finite double. Bit arithmetic on the IEEE 754
+/// exponent field (a library frexp/ldexp per row and column would cost as much as a small
+/// refactorisation).
 inline double inverse_power_of_two(double m) {
-  if (!(m > 0)) return 1.0;
-  int e = 0;
-  (void)std::frexp(m, &e);
-  return std::ldexp(1.0, std::clamp(-e, -1022, 1023));
+  const auto biased = static_cast<int>((std::bit_cast<std::uint64_t>(m) >> 52) & 0x7ff);  // m >= 0
+  if (biased == 0 || biased == 0x7ff) {  // zero, subnormal (rare) or not finite
+    if (!(m > 0) || !std::isfinite(m)) return 1.0;
+    int e = 0;
+    (void)std::frexp(m, &e);
+    return std::ldexp(1.0, std::clamp(-e, -1022, 1023));
+  }
+  // m = 1.f * 2^(biased - 1023) = 0.1f * 2^(biased - 1022): e = biased - 1022, 2^-e has the
+  // biased exponent 1023 - e = 2045 - biased, which is in [1, 2044] here.
+  return std::bit_cast<double>(static_cast<std::uint64_t>(2045 - biased) << 52);
 }
 
-/// Equilibrates `values` (CSR order of `a`): rs[r] scales row r so that its largest magnitude
-/// is in [0.5, 1), then cs[j] scales column j of the row-scaled matrix likewise (all 1 when
-/// `on` is false). Writes the scaled values rs_r a_rj cs_j (exact: powers of two) to `scaled`,
-/// and per row their largest magnitude (1 for an all-zero row) and 1-norm. Throws
+/// Equilibrates `values` (CSR order of `a`) and loads the factor storage: rs[r] scales row r
+/// so that its largest magnitude is in [0.5, 1), then cs[j] scales column j of the row-scaled
+/// matrix likewise (all 1 when `on` is false). Writes the scaled values rs_r a_rj cs_j (exact:
+/// powers of two) to `scaled` and to their factor slots fv[a_map[q]] (the other slots are set
+/// to 0), and per row their largest magnitude (1 for an all-zero row) and 1-norm. Throws
 /// pradis::error(error_code::non_finite, msg, {}, {}, row) for a NaN or infinite value.
 inline void equilibrate(const sparsity_pattern& a, std::span<const double> values, bool on, double* rs, double* cs,
-                        double* scaled, double* row_max, double* row_norm1) {
+                        double* scaled, double* row_max, double* row_norm1, const int* a_map, double* fv,
+                        std::size_t nnz_factor) {
   const int n = a.n;
   const int* const rp = a.row_ptr.data();
   const int* const ac = a.col.data();
-  for (int r = 0; r < n; ++r) {
-    double m = 0;
-    for (int q = rp[r]; q < rp[r + 1]; ++q) {
-      const double v = values[q];
-      if (!std::isfinite(v))
-        throw error(error_code::non_finite,
-                    "matrix entry (row " + std::to_string(r) + ", column " + std::to_string(ac[q]) + ") is " +
-                        std::to_string(v),
-                    {}, {}, r);
-      m = std::max(m, std::abs(v));
-    }
-    rs[r] = on ? inverse_power_of_two(m) : 1.0;
-  }
   std::fill(cs, cs + n, on ? 0.0 : 1.0);
-  if (on) {
-    for (int r = 0; r < n; ++r)
-      for (int q = rp[r]; q < rp[r + 1]; ++q) cs[ac[q]] = std::max(cs[ac[q]], rs[r] * std::abs(values[q]));
-    for (int j = 0; j < n; ++j) cs[j] = inverse_power_of_two(cs[j]);
+  for (int r = 0; r < n; ++r) {
+    double m = 0, sum = 0;
+    for (int q = rp[r]; q < rp[r + 1]; ++q) {
+      m = std::max(m, std::abs(values[q]));
+      sum += std::abs(values[q]);  // NaN or inf propagates here (std::max may drop a NaN)
+    }
+    if (!std::isfinite(sum)) {  // a non-finite entry, or an overflowing sum of finite ones
+      for (int q = rp[r]; q < rp[r + 1]; ++q)
+        if (!std::isfinite(values[q]))
+          throw error(error_code::non_finite,
+                      "matrix entry (row " + std::to_string(r) + ", column " + std::to_string(ac[q]) + ") is " +
+                          std::to_string(values[q]),
+                      {}, {}, r);
+    }
+    double s = 1.0;
+    if (on) {
+      s = inverse_power_of_two(m);
+      for (int q = rp[r]; q < rp[r + 1]; ++q) cs[ac[q]] = std::max(cs[ac[q]], s * std::abs(values[q]));
+    }
+    rs[r] = s;
   }
+  if (on)
+    for (int j = 0; j < n; ++j) cs[j] = inverse_power_of_two(cs[j]);
+  std::fill(fv, fv + nnz_factor, 0.0);
   for (int r = 0; r < n; ++r) {
     double m = 0, s1 = 0;
+    const double s = rs[r];
     for (int q = rp[r]; q < rp[r + 1]; ++q) {
-      const double v = values[q] * rs[r] * cs[ac[q]];
+      const double v = values[q] * s * cs[ac[q]];
       scaled[q] = v;
+      fv[a_map[q]] = v;
       m = std::max(m, std::abs(v));
       s1 += std::abs(v);
     }

@@ -239,13 +239,13 @@ class sparse_lu {
     factorized_ = false;
     const int n = stats_.n;
     detail::equilibrate(pattern_, values, equilibrate, rs_.data(), cs_.data(), a_val_.data(), row_scale_.data(),
-                        row_norm1_.data());
+                        row_norm1_.data(), lu_.a_map.data(), f_val_.data(), f_val_.size());
     const double threshold = static_pivoting ? std::max(pivot_tolerance, perturbation) : pivot_tolerance;
-    if (delay_zero_diagonals) delay_new_weak_rows(threshold);
-
+    if (delay_zero_diagonals && delay_new_weak_rows(threshold)) {  // new structure: reload the values
+      std::fill(f_val_.begin(), f_val_.end(), 0.0);
+      for (std::size_t q = 0; q < a_val_.size(); ++q) f_val_[lu_.a_map[q]] = a_val_[q];
+    }
     double* const fv = f_val_.data();
-    std::fill(f_val_.begin(), f_val_.end(), 0.0);
-    for (std::size_t q = 0; q < a_val_.size(); ++q) fv[lu_.a_map[q]] += a_val_[q];
 
     const detail::elimination_result el = detail::eliminate(lu_, fv, work_.data(), row_scale_.data(), threshold,
                                                             perturbation, static_pivoting);
@@ -390,8 +390,9 @@ class sparse_lu {
   }
 
   /// Marks rows whose equilibrated diagonal is zero or below threshold * row scale as delayed;
-  /// redoes the symbolic phase when the current order does not respect a delay.
-  void delay_new_weak_rows(double threshold) {
+  /// redoes the symbolic phase when the current order does not respect a delay (returns true
+  /// then: the factor storage is new and empty).
+  bool delay_new_weak_rows(double threshold) {
     const int n = stats_.n;
     bool any_new = false;
     for (int r = 0; r < n; ++r) {
@@ -402,7 +403,7 @@ class sparse_lu {
         any_new = true;
       }
     }
-    if (!any_new) return;
+    if (!any_new) return false;
     bool respected = true;
     for (int r = 0; r < n && respected; ++r)
       if (delayed_[r]) respected = detail::delay_respected(r, lu_.iperm, g_, delayed_);
@@ -416,6 +417,7 @@ class sparse_lu {
       ++stats_.reanalyses;
     }
     set_structure_statistics();
+    return !respected;
   }
 
   /// x := A^{-1} b in place (b given in x; equilibrated system) with residual check and
