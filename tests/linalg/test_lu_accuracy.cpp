@@ -11,6 +11,7 @@
 #include <numeric>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -352,6 +353,7 @@ TEST_SUITE("linalg/accuracy") {
         const double exact = a.cwiseAbs().colwise().sum().maxCoeff() * inv.cwiseAbs().colwise().sum().maxCoeff();
         sparse_lu<min_degree_ordering> lu;
         lu.analyze(m.pattern);
+        CHECK_THROWS_AS(lu.estimate_condition(), std::logic_error);  // nothing factorised yet
         lu.factorize(m.values);
         CHECK(lu.statistics().condition_estimate == 0);  // not estimated unless asked
         const double est = lu.estimate_condition();
