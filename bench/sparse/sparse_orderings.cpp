@@ -17,7 +17,8 @@
 //   matrix,n,nnz_a,solver,ordering,nnz_factor,order_s,factor_s,refactor_s,solve_s
 // Flags (besides google-benchmark's): --csv=PATH (default docs/data/sparse_orderings.csv),
 // --small (smallest size of each family only: the CTest smoke run),
-// --thresholds=PATH (only the OPTIM threshold sweep on small matrices, see run_thresholds()).
+// --thresholds=PATH (only the OPTIM threshold sweep on small matrices, see run_thresholds()),
+// --max-n=N (with --thresholds: only the matrices with n <= N; a quick before/after check).
 // Weak orderings are skipped where they are hopeless (natural on large 2D/3D grids,
 // row_count/initial_fill above 5000 DOFs); min_fill is skipped on the 32^3 grid (its exact
 // deficiency updates cost O(fill * degree), about half a minute already on 24^3).
@@ -31,10 +32,12 @@
 #include <cmath>
 #include <cstdio>
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -434,7 +437,7 @@ double median_time(F&& f, int runs = 5) {
 /// 10 nodes high, 2-DOF body chains) with 2..~8000 DOFs, and writes them to a CSV. The cost of a level for a run with R
 /// refactorisations per topology is analyze_s + R * (refactor_s + solve_s); see
 /// docs/sparse.md for the crossovers that set automatic_level().
-void run_thresholds(const std::string& path) {
+void run_thresholds(const std::string& path, int max_n) {
   std::vector<test_matrix> mats;
   for (int k = 2; k <= 32; ++k) mats.push_back(grid(k, 2));
   for (const int k : {40, 48, 64, 90}) mats.push_back(grid(k, 2));
@@ -444,6 +447,7 @@ void run_thresholds(const std::string& path) {
     mats.push_back(truss(2, nx));
   for (const int nb : {1, 2, 3, 4, 5, 6, 8, 10, 15, 20, 25, 30, 40, 50, 75, 100, 150, 200, 300, 400, 500})
     mats.push_back(chain2(nb));
+  std::erase_if(mats, [&](const test_matrix& m) { return m.pattern.n > max_n; });
   std::ofstream os(path);
   if (!os) {
     std::fprintf(stderr, "cannot write %s\n", path.c_str());
@@ -480,15 +484,17 @@ int main(int argc, char** argv) {
   std::string csv = "docs/data/sparse_orderings.csv";
   bool small = false;
   std::string thresholds;
+  int max_n = std::numeric_limits<int>::max();
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
     if (std::strncmp(argv[i], "--csv=", 6) == 0) csv = argv[i] + 6;
     else if (std::strcmp(argv[i], "--small") == 0) small = true;
     else if (std::strncmp(argv[i], "--thresholds=", 13) == 0) thresholds = argv[i] + 13;
+    else if (std::strncmp(argv[i], "--max-n=", 8) == 0) max_n = std::atoi(argv[i] + 8);
     else args.push_back(argv[i]);
   }
   if (!thresholds.empty()) {  // OPTIM threshold sweep only (no google-benchmark run)
-    run_thresholds(thresholds);
+    run_thresholds(thresholds, max_n);
     return 0;
   }
   int bargc = static_cast<int>(args.size());

@@ -23,6 +23,7 @@
 #include <span>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "pradis/assembly/assembler.hpp"
@@ -416,6 +417,41 @@ TEST_SUITE("core/allocation") {
     SUBCASE("5-point grid 30 x 30 (fill-in)") {
       const grid_matrix g = make_grid(30);
       check_matrix(g.pattern, g.values);
+    }
+    SUBCASE("saddle point: grid 10 x 10 with 20 zero-diagonal constraint rows, and the condition estimate") {
+      const grid_matrix g = make_grid(10);
+      std::vector<std::pair<int, int>> ij;
+      std::vector<double> v;
+      for (int r = 0; r < 100; ++r)
+        for (int q = g.pattern.row_ptr[static_cast<std::size_t>(r)]; q < g.pattern.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
+          ij.emplace_back(r, g.pattern.col[static_cast<std::size_t>(q)]);
+          v.push_back(g.values[static_cast<std::size_t>(q)]);
+        }
+      for (int c = 0; c < 20; ++c) {  // constraint c: u_{5c} - u_{5c+1} = 0, zero diagonal stored
+        const int r = 100 + c;
+        for (const auto& [j, w] : {std::pair{5 * c, 1.0}, std::pair{5 * c + 1, -1.0}}) {
+          ij.emplace_back(r, j), v.push_back(w);
+          ij.emplace_back(j, r), v.push_back(w);
+        }
+        ij.emplace_back(r, r), v.push_back(0.0);
+      }
+      const auto p = linalg::sparsity_pattern::from_entries(120, ij);
+      std::vector<double> values(static_cast<std::size_t>(p.nnz()), 0.0);
+      for (std::size_t k = 0; k < ij.size(); ++k)
+        values[static_cast<std::size_t>(p.find(ij[k].first, ij[k].second))] += v[k];
+      linalg::sparse_lu<linalg::min_degree_ordering> lu;
+      lu.analyze(p);
+      lu.factorize(values);  // warm-up: finds the zero diagonals and re-analyses once
+      CHECK(lu.statistics().reanalyses == 1);
+      std::vector<double> x(120, 1.0);
+      const allocation_counts counts = count_allocations([&] {
+        lu.factorize(values);
+        lu.solve(x);
+        lu.estimate_condition();
+      });
+      check_none(counts);
+      CHECK(lu.statistics().reanalyses == 1);
+      CHECK(lu.statistics().perturbed_pivots == 0);
     }
     SUBCASE("Newton matrix of the planar chain (N = 50)") {
       model<planar_inertia, planar_link, constant_force> m;

@@ -128,14 +128,23 @@ TEST_SUITE("linalg") {
       sparse_lu<min_degree_ordering> md;
       sparse_lu<min_fill_ordering> mf;
       sparse_lu<row_count_ordering> rc;
+      sparse_lu<row_count_ordering> rc_plain;  // zero diagonals not delayed: the watchdog repairs
+      rc_plain.delay_zero_diagonals = false;
       CHECK(error_vs_dense(m, nat, 1u) < 1e-12);
       CHECK(error_vs_dense(m, md, 2u) < 1e-12);
       CHECK(error_vs_dense(m, mf, 3u) < 1e-12);
       CHECK(error_vs_dense(m, rc, 4u) < 1e-12);
-      CHECK(nat.statistics().perturbed_pivots == 0);  // constraints come last: Schur complement pivots
-      CHECK(rc.statistics().perturbed_pivots > 0);    // constraint rows (2 entries) go first: zero pivots
+      CHECK(error_vs_dense(m, rc_plain, 4u) < 1e-12);
+      // Delayed constraint rows get Schur complement pivots under every ordering ...
+      for (const lu_statistics* s : {&nat.statistics(), &md.statistics(), &mf.statistics(), &rc.statistics()}) {
+        CHECK(s->perturbed_pivots == 0);
+        CHECK(s->delayed_rows == nc);
+      }
+      // ... while row_count without the delay puts the constraint rows (2 entries) first: zero pivots.
+      CHECK(rc_plain.statistics().perturbed_pivots > 0);
       // The solution is refined to roundoff in every case.
-      for (const lu_statistics* s : {&nat.statistics(), &md.statistics(), &mf.statistics(), &rc.statistics()})
+      for (const lu_statistics* s :
+           {&nat.statistics(), &md.statistics(), &mf.statistics(), &rc.statistics(), &rc_plain.statistics()})
         CHECK(s->last_backward_error < 1e-14);
     }
   }
@@ -144,6 +153,7 @@ TEST_SUITE("linalg") {
     const auto p = sparsity_pattern::from_entries(2, entries_t{{0, 0}, {0, 1}, {1, 0}, {1, 1}});
     const std::vector<double> v{1e-12, 1.0, 1.0, 1.0};
     sparse_lu<natural_ordering> lu;
+    lu.delay_zero_diagonals = false;  // by default the weak row 0 would be eliminated second
     lu.analyze(p);
     lu.factorize(v);
     CHECK(lu.statistics().perturbed_pivots == 1);
