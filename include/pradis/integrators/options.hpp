@@ -57,9 +57,18 @@ struct run_options {
   /// fails). true: PRADIS's velocity-based local error estimate and three-branch
   /// step rule; the first stage starts with steps of SMIN and grows.
   bool error_control = false;
-  double dabsx = 0.1;        ///< DABSX: absolute tolerance of the local error (velocity units), times the DOF's nominal potential
+  /// DABSX: absolute tolerance of the local error (velocity units), times the DOF's
+  /// nominal potential. Unset (the default): DABSX = DRLTX, so that the relative
+  /// tolerance alone sets the accuracy on a model whose velocities are O(1) in their
+  /// nominal units. (PRADIS's fixed default 0.1 made DRLTX below ~1e-3 irrelevant there;
+  /// set `.dabsx = 0.1` for PRADIS's behaviour.)
+  std::optional<double> dabsx{};
   double drltx = 1e-3;       ///< DRLTX: relative tolerance of the local error, times |v|
   bool predict = false;      ///< PREDICT: linear prediction of the acceleration in the error predictor
+  /// Second-order schemes: estimate a_{n+1} - a_n by the two-step difference
+  /// (a_{n+1} - a_{n-1}) h / (h + h_prev), which filters the ringing of stiff modes the
+  /// step does not resolve (step_control.hpp). false: PRADIS's one-step difference.
+  bool two_step_estimate = true;
   double control = 0.0;      ///< CONTROL: no error-driven step reduction below this step (0: none)
 };
 
@@ -104,6 +113,9 @@ inline std::string num(double x) {
 
 /// Checks a stage's options; returns the message of the first invalid one
 /// (the simulation throws it as invalid_option, prefixed by the scheme name).
+/// The DABSX a stage uses: the one set, else DRLTX (see run_options::dabsx).
+inline double effective_dabsx(const run_options& o) noexcept { return o.dabsx.value_or(o.drltx); }
+
 inline std::optional<std::string> check_options(const run_options& o) {
   using detail::num;
   auto bad = [](double x) { return !std::isfinite(x); };
@@ -124,9 +136,10 @@ inline std::optional<std::string> check_options(const run_options& o) {
     return "the Newton rate limit " + num(n.max_rate) + " must be in (0, 1)";
   if (bad(n.coefficient_change) || n.coefficient_change < 0)
     return "the Jacobian coefficient change " + num(n.coefficient_change) + " must be >= 0";
-  if (bad(o.dabsx) || o.dabsx < 0) return "DABSX = " + num(o.dabsx) + " must be >= 0";
+  if (o.dabsx && (bad(*o.dabsx) || *o.dabsx < 0)) return "DABSX = " + num(*o.dabsx) + " must be >= 0";
   if (bad(o.drltx) || o.drltx < 0) return "DRLTX = " + num(o.drltx) + " must be >= 0";
-  if (o.error_control && !(o.dabsx + o.drltx > 0)) return "error control needs DABSX + DRLTX > 0 (both are zero)";
+  if (o.error_control && !(effective_dabsx(o) + o.drltx > 0))
+    return "error control needs DABSX + DRLTX > 0 (both are zero)";
   if (bad(o.control) || o.control < 0) return "CONTROL = " + num(o.control) + " must be >= 0";
   return std::nullopt;
 }

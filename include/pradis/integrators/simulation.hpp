@@ -92,6 +92,7 @@ class simulation<model<Es...>, Scheme, Solver> {
     double next_out = opt.out > 0 ? t_start + opt.out : opt.end;
     if (h_nominal_ <= 0 || h_nominal_ > opt.smax) h_nominal_ = opt.smax;
     if (opt.error_control && stats_.steps == 0) h_nominal_ = opt.smin;  // PRADIS: start with steps of SMIN
+    long controlled_steps = 0, steps_at_smax = 0;  // error control: did the tolerance ever limit the step?
     while (t_ < opt.end * (1 - 1e-14) - 1e-300) {
       const double target = std::min(next_out, opt.end);
       bool clipped = false;
@@ -108,8 +109,11 @@ class simulation<model<Es...>, Scheme, Solver> {
       }
       if (outcome == step_outcome::accepted) {
         for (auto& f : step_observers_) f(*this);
-        if (opt.error_control)
+        if (opt.error_control) {
+          ++controlled_steps;
+          if (h >= opt.smax * (1 - 1e-12)) ++steps_at_smax;
           h_nominal_ = clipped ? std::max(h_nominal_, h_error_) : h_error_;
+        }
         else if (!clipped || h >= h_nominal_)
           grow_nominal_step(h_nominal_, successes_, opt_.smax);
         if (clipped || opt.out <= 0) {
@@ -128,6 +132,11 @@ class simulation<model<Es...>, Scheme, Solver> {
       }
     }
     t_ = opt.end;
+    if (controlled_steps >= 10 && steps_at_smax >= 0.9 * static_cast<double>(controlled_steps))
+      log_.write("warning: error control: " + std::to_string(steps_at_smax) + " of " +
+                 std::to_string(controlled_steps) + " steps were SMAX = " + num(opt.smax) +
+                 ": the local error stayed below DABSX = " + num(effective_dabsx(opt)) + " + DRLTX = " +
+                 num(opt.drltx) + " |v|, so SMAX, not the tolerance, set the accuracy of this stage");
     return stats_ - before;
   }
 

@@ -33,7 +33,9 @@ struct error_test {
 /// linearly extrapolated from a_prev over h_prev), lp = |v_p - v| / 2.
 /// Second-order members of the alpha family: lp = h |beta - 1/6| |a_{n+1} - a_n|,
 /// the displacement error estimate of the Newmark family per unit step
-/// (velocity units, O(h^2) like PRADIS's). Per DOF lp <= DABSX potential +
+/// (velocity units, O(h^2) like PRADIS's), with a_{n+1} - a_n taken as the
+/// two-step difference (a_{n+1} - a_{n-1}) h / (h + h_prev) once the previous
+/// step is known (filters unresolved stiff ringing). Per DOF lp <= DABSX potential +
 /// DRLTX |v|; r = min tolerance / lp; next step c h r (r < 1/4), c h sqrt(r)
 /// (r <= 7), c h r^(1/4), c = 0.8, clamped to [max(SMIN, CONTROL), SMAX].
 template <Integrator Scheme, class Assembler>
@@ -48,18 +50,27 @@ error_test local_error_test(const Scheme& scheme, const Assembler& as, const glo
     beta = q.beta;
   }
   error_test out;
+  const double dabsx = effective_dabsx(opt);
+  // Two-step difference for the second-order estimate when the previous step is known:
+  // (a_{n+1} - a_{n-1}) h / (h + h_prev) equals a_{n+1} - a_n to leading order for a
+  // smooth motion, but cancels the alternating (period 2h) ringing of stiff modes that
+  // the step does not resolve and that the trapezoidal rule keeps undamped (a penalty
+  // joint, a stiff link): those made the one-step difference erratic and the step
+  // controller reject 20-30 % of the steps (docs/architecture.md, "Error control").
+  const bool two_step = opt.two_step_estimate && second && h_prev > 0 && a_prev.size() == s0.a.size();
   double r = std::numeric_limits<double>::infinity();
   for (int i = 0; i < as.equations(); ++i) {
     const auto d = as.dof_of(i);
     double lp;
     if (second) {
-      lp = h * std::abs(beta - 1.0 / 6.0) * std::abs(s.a(d) - s0.a(d));
+      lp = two_step ? h * std::abs(beta - 1.0 / 6.0) * std::abs(s.a(d) - a_prev(d)) * h / (h + h_prev)
+                    : h * std::abs(beta - 1.0 / 6.0) * std::abs(s.a(d) - s0.a(d));
     } else {
       double ap = s0.a(d);
       if (opt.predict && h_prev > 0 && a_prev.size() == s0.a.size()) ap += (s0.a(d) - a_prev(d)) * h / h_prev;
       lp = 0.5 * std::abs(s0.v(d) + h * ap - s.v(d));
     }
-    const double tol = opt.dabsx * scales[static_cast<std::size_t>(d)].potential + opt.drltx * std::abs(s.v(d));
+    const double tol = dabsx * scales[static_cast<std::size_t>(d)].potential + opt.drltx * std::abs(s.v(d));
     if (lp > 0 && tol / lp < r) {
       r = tol / lp;
       out.worst = d;
