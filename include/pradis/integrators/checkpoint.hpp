@@ -71,7 +71,9 @@ class checkpoint_writer {
   }
 
  private:
-  void raw(const void* p, std::size_t n) { buf_.append(static_cast<const char*>(p), n); }
+  void raw(const void* p, std::size_t n) {
+    if (n > 0) buf_.append(static_cast<const char*>(p), n);  // an empty vector's data() may be null
+  }
   std::string buf_;
 };
 
@@ -142,7 +144,7 @@ class checkpoint_reader {
  private:
   void raw(void* p, std::size_t n) {
     if (n > buf_.size() - pos_) damaged("a field runs past the end of its payload");
-    std::memcpy(p, buf_.data() + pos_, n);
+    if (n > 0) std::memcpy(p, buf_.data() + pos_, n);  // an empty vector's data() may be null
     pos_ += n;
   }
   std::string buf_;
