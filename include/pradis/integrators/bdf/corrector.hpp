@@ -1,0 +1,131 @@
+#pragma once
+/// \file
+/// The corrector of pradis::bdf_simulation: modified Newton on the velocities
+/// of the free DOFs with u = u_p + (v - u'_p) / c and a = v'_p + c (v - v_p),
+/// Newton matrix J = (1/c) K + C + c M, IDA's convergence test and Jacobian
+/// reuse (Hindmarsh et al., ACM TOMS 31 (2005) 363-396, section 2.1):
+/// - the correction dy = (dv / c, dv) of the displacements and velocities is
+///   measured in the weighted RMS norm of the error test; the iteration has
+///   converged when ss |dy| <= eps (eps = bdf_options::newton_tolerance), with
+///   ss = rate / (1 - rate), rate = (|dy_m| / |dy_0|)^(1/m) from the
+///   corrections of this step (for the first correction: the last rate of the
+///   previous step, 20 after a new factorisation, 100 after c changed), or at
+///   once when the first correction is below 1e-4 eps;
+/// - it fails when the rate exceeds newton_options::max_rate, on a non-finite
+///   correction, a singular matrix or situation, or after newton_options::itr
+///   corrections;
+/// - the Jacobian is evaluated and factorised when none is kept, or when c left
+///   [c_J (1 - x) / (1 + x), c_J (1 + x) / (1 - x)], x = coefficient_change;
+///   a kept one has its corrections scaled by 2 / (1 + c / c_J) (IDA); a step
+///   that failed with a kept Jacobian is retried at once with a fresh one.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "pradis/assembly/assembler.hpp"
+#include "pradis/core/error.hpp"
+#include "pradis/integrators/bdf/history.hpp"
+#include "pradis/integrators/options.hpp"
+
+namespace pradis::bdf_detail {
+
+/// What the corrector keeps across steps.
+struct newton_memory {
+  bool valid = false;  ///< a factorisation is kept
+  double c_jac = 0;    ///< the c it was made with
+  double ss = 20;      ///< rate / (1 - rate) for the first correction of a step
+};
+
+/// Sets the free DOFs of s from their velocities: u = u_p + (v - u'_p) / c,
+/// a = v'_p + c (v - v_p); y_p, yp_p stack (u, v) of the ne equations.
+template <class Assembler>
+void complete_state(const Assembler& as, global_state& s, const Eigen::VectorXd& y_p, const Eigen::VectorXd& yp_p,
+                    double c) {
+  const int ne = as.equations();
+  for (int i = 0; i < ne; ++i) {
+    const auto d = as.dof_of(i);
+    const double v = s.v(d);
+    s.u(d) = y_p(i) + (v - yp_p(i)) / c;
+    s.a(d) = yp_p(ne + i) + c * (v - y_p(ne + i));
+  }
+}
+
+/// Newton on one step from the predictor (the velocities of s are set to v_p
+/// here). Returns whether it converged. `evaluate(coefficients, want_jacobian,
+/// iteration)` evaluates the model at s into `as`. `failure` receives a
+/// singular matrix or situation that ended the last attempt.
+template <class Assembler, class Solver, class Evaluate>
+bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::VectorXd& y_p, const Eigen::VectorXd& yp_p,
+             double c, double c_last, const Eigen::VectorXd& w, const newton_options& nw, double eps,
+             newton_memory& mem, std::vector<double>& rhs, Eigen::VectorXd& dy, run_statistics& stats,
+             std::optional<error>& failure, Evaluate&& evaluate) {
+  const int ne = as.equations();
+  const jacobian_coefficients jc{1 / c, 1, c};
+  bool refresh = !mem.valid;
+  if (nw.coefficient_change < 1 && mem.valid) {
+    const double lo = (1 - nw.coefficient_change) / (1 + nw.coefficient_change), r = c / mem.c_jac;
+    refresh = !(r >= lo && r <= 1 / lo);
+  }
+  if (c != c_last) mem.ss = 100;
+  dy.resize(2 * ne);
+  failure.reset();
+  for (;;) {
+    const bool fresh = refresh;
+    for (int i = 0; i < ne; ++i) s.v(as.dof_of(i)) = y_p(ne + i);
+    complete_state(as, s, y_p, yp_p, c);
+    double oldnrm = 0;
+    bool converged = false;
+    try {
+      for (int m = 0; m < nw.itr && !converged; ++m) {
+        evaluate(jc, refresh, m);
+        if (refresh) {
+          mem.valid = false;
+          solver.factorize(as.values());
+          ++stats.factorizations;
+          mem.valid = true;
+          mem.c_jac = c;
+          mem.ss = 20;
+          refresh = false;
+        }
+        for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
+        solver.solve(rhs);
+        ++stats.newton_iterations;
+        const double scale = c == mem.c_jac ? 1.0 : 2 / (1 + c / mem.c_jac);
+        bool finite = true;
+        for (int i = 0; i < ne; ++i) {
+          const double dv = scale * rhs[static_cast<std::size_t>(i)];
+          finite = finite && std::isfinite(dv);
+          s.v(as.dof_of(i)) += dv;
+          dy(i) = dv / c;
+          dy(ne + i) = dv;
+        }
+        if (!finite) break;
+        complete_state(as, s, y_p, yp_p, c);
+        const double delnrm = wrms(dy, w);
+        if (m == 0) {
+          oldnrm = delnrm;
+          if (delnrm <= 1e-4 * eps) converged = true;
+        } else {
+          const double rate = std::pow(delnrm / oldnrm, 1.0 / m);
+          if (!(rate <= nw.max_rate)) break;
+          mem.ss = rate / (1 - rate);
+        }
+        if (mem.ss * delnrm <= eps) converged = true;
+      }
+    } catch (const error& e) {
+      if (e.code() != error_code::singular_situation && e.code() != error_code::singular_matrix) throw;
+      failure = e;
+      if (e.code() == error_code::singular_matrix) mem.valid = false;
+    }
+    if (converged) return true;
+    if (fresh || (failure && failure->code() == error_code::singular_situation)) return false;
+    ++stats.jacobian_retries;
+    refresh = true;
+    failure.reset();
+  }
+}
+
+}  // namespace pradis::bdf_detail

@@ -1,0 +1,56 @@
+#pragma once
+/// \file
+/// Options of the variable-order BDF driver pradis::bdf_simulation (docs/bdf.md)
+/// and their check. The stage options (END, OUT, SMAX, SMIN, DRLTX, DABSX,
+/// ERROR_CONTROL, IGNORE, the Newton limits ITR, max_rate, coefficient_change)
+/// come from pradis::run_options as for pradis::simulation; these are the
+/// options that only the BDF method has.
+
+#include <limits>
+#include <optional>
+#include <string>
+
+#include "pradis/integrators/options.hpp"
+
+namespace pradis {
+
+/// The highest order of the BDF driver (BDF6 and above are not zero-stable).
+inline constexpr int bdf_highest_order = 5;
+
+/// Options of the BDF method, set once for a bdf_simulation.
+struct bdf_options {
+  /// MAXORD: the highest order used, 1..5 (IDA's default 5). With error control
+  /// the order varies between 1 and max_order; without it every step is taken
+  /// at max_order once the start has raised the order.
+  int max_order = bdf_highest_order;
+  /// Keep the order at max_order once reached (no lowering by the order
+  /// selection; the start still raises it from 1 one step at a time). For tests
+  /// of the convergence order and for comparisons.
+  bool fixed_order = false;
+  /// The Newton iteration stops when the estimated remaining error of the
+  /// corrector, rate / (1 - rate) times the last correction in the weighted RMS
+  /// norm of the error test, is below this fraction of the error tolerance
+  /// (IDA's epcon, default 0.33).
+  double newton_tolerance = 0.33;
+  /// The first step of a stage: 0 selects it as IDA does (0.001 of the stage,
+  /// at most 0.5 / |y'| in the weighted norm); else this step (clamped to
+  /// [SMIN, SMAX]). Used only with error control: without it the run starts at
+  /// SMIN and doubles the step up to SMAX.
+  double initial_step = 0;
+};
+
+/// Checks bdf_options; returns the message of the first invalid one (the
+/// driver throws it as invalid_option, prefixed by "BDF: ").
+inline std::optional<std::string> check_bdf_options(const bdf_options& o) {
+  using detail::num;
+  if (o.max_order < 1 || o.max_order > bdf_highest_order)
+    return "the maximum order MAXORD = " + std::to_string(o.max_order) + " is outside 1.." +
+           std::to_string(bdf_highest_order);
+  if (!(o.newton_tolerance > 0 && o.newton_tolerance <= 1))
+    return "the Newton tolerance " + num(o.newton_tolerance) + " must be in (0, 1]";
+  if (!(o.initial_step >= 0) || o.initial_step == std::numeric_limits<double>::infinity())
+    return "the initial step " + num(o.initial_step) + " must be a finite number >= 0";
+  return std::nullopt;
+}
+
+}  // namespace pradis
