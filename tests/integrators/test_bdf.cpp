@@ -20,6 +20,7 @@
 #include <cmath>
 #include <numbers>
 #include <span>
+#include <vector>
 #include <string>
 
 #include "pradis/core/element.hpp"
@@ -121,20 +122,28 @@ TEST_SUITE("integrators/bdf") {
   }
 
   TEST_CASE("with error control the oscillator's error follows DRLTX from 1e-3 to 1e-8") {
-    double last = 1e300;
+    // Over two periods the error at END is the sum of the local errors (the
+    // oscillator does not damp them): measured 2.6 .. 40 times the tolerance.
+    double first = 0, last = 1e300;
     for (double tol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
+      CAPTURE(tol);
       const oscillator_run r = run_oscillator({}, controlled(2.0, tol, 0.1));
       MESSAGE("tol " << tol << ": error " << r.error << " steps " << r.stats.steps << " rejections "
                      << r.stats.error_rejections << " nfact " << r.stats.factorizations << " neval "
-                     << r.stats.evaluations << " order " << r.order);
+                     << r.stats.evaluations << " njac " << r.stats.jacobian_evaluations << " order " << r.order);
       CHECK(r.error < last);
+      CHECK(r.error < 50 * tol);
+      if (first == 0) first = r.error;
       last = r.error;
     }
+    CHECK(last < 1e-3 * first);
   }
 
-  TEST_CASE("with error control the quadratic-drag motion follows DRLTX") {
+  TEST_CASE("with error control the quadratic-drag motion follows DRLTX from 1e-3 to 1e-8") {
     const double mass = 2.0, c = 0.5, v0 = 3.0, end = 5.0;
+    double first = 0, last = 0;
     for (double tol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
+      CAPTURE(tol);
       model<point_mass, quadratic_drag, initial_velocity> m;
       const dof x = m.add_dof("x");
       m.add<point_mass>("m", {mass}, x);
@@ -146,6 +155,195 @@ TEST_SUITE("integrators/bdf") {
       const double eu = std::abs(sim.u(x) - mass / c * std::log(g)) / (mass / c * std::log(g));
       const double ev = std::abs(sim.v(x) - v0 / g) / (v0 / g);
       MESSAGE("tol " << tol << ": rel error u " << eu << " v " << ev << " steps " << st.steps);
+      CHECK(std::max(eu, ev) < 20 * tol);
+      if (first == 0) first = std::max(eu, ev);
+      last = std::max(eu, ev);
+    }
+    CHECK(last < 1e-4 * first);
+  }
+
+  TEST_CASE("outputs at OUT and a second stage continue the exact oscillator") {
+    model<point_mass, linear_spring, initial_displacement> m;
+    const dof x = m.add_dof("x");
+    m.add<point_mass>("m", {1.0}, x);
+    m.add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
+    m.add<initial_displacement>("x0", {1.0}, x);
+    bdf_simulation sim(m);
+    std::vector<double> times;
+    double worst = 0;
+    sim.on_output([&](const auto& s) {
+      times.push_back(s.time());
+      worst = std::max(worst, std::abs(s.u(x) - std::cos(osc_w * s.time())));
+    });
+    run_options o = controlled(0.5, 1e-7, 0.1);
+    o.out = 0.1;
+    sim.run(o);
+    o.end = 1.0;
+    sim.run(o);
+    REQUIRE(times.size() == 11);  // t0 and 10 outputs
+    for (std::size_t i = 0; i < times.size(); ++i) CHECK(times[i] == doctest::Approx(0.1 * static_cast<double>(i)).epsilon(1e-12));
+    CHECK(worst < 50 * 1e-7);
+    CHECK(sim.statistic("ORDER") >= 1);
+  }
+
+  TEST_CASE("a very stiff spring: large steps stay stable and damp the stiff mode") {
+    // m1 = 1 on k1 = (2 pi)^2; m2 = 1e-3 on k2 = m2 (2 pi 1e5)^2 to m1 (100 kHz), undamped;
+    // x1(0) = 1, x2(0) = 1.001, to t = 1.125 (a generic phase of the slow mode). Exact: modal superposition of the generalized eigenproblem
+    // K phi = w^2 M phi (two modes, closed form of the 2x2 characteristic polynomial).
+    const double m1 = 1, m2 = 1e-3, k1 = osc_w * osc_w, k2 = m2 * std::pow(2 * std::numbers::pi * 1e5, 2);
+    const double bq = m1 * k2 + m2 * (k1 + k2), disc = std::sqrt(bq * bq - 4 * m1 * m2 * k1 * k2);
+    const double lam_s = 2 * k1 * k2 / (bq + disc), lam_f = (bq + disc) / (2 * m1 * m2);
+    auto shape = [&](double lam) { return (k1 + k2 - lam * m1) / k2; };  // phi = (1, shape)
+    const double ps = shape(lam_s), pf = shape(lam_f);
+    // Modal coordinate q = phi^T M x / phi^T M phi.
+    auto modal = [&](double p, double x1, double x2) { return (m1 * x1 + m2 * p * x2) / (m1 + m2 * p * p); };
+    // beta > 0 adds stiffness-proportional (Rayleigh) dampers beta k1, beta k2 in parallel
+    // to the springs: C = beta K keeps the modes uncoupled, each with the damping ratio
+    // zeta = beta w / 2 (Clough and Penzien, Dynamics of Structures, section 12-4), so
+    // q(t) = q0 exp(-zeta w t) (cos wd t + zeta w / wd sin wd t), wd = w sqrt(1 - zeta^2).
+    long late = 0;
+    double largest = 0;
+    auto run = [&](const bdf_options& bo, const run_options& o, double x20, double beta, double& es, double& qf,
+                   run_statistics& st) {
+      const double qs0 = modal(ps, 1.0, x20), w = std::sqrt(lam_s), z = beta * w / 2, wd = w * std::sqrt(1 - z * z);
+      model<point_mass, linear_spring, linear_damper, initial_displacement> m;
+      const dof x1 = m.add_dof("x1"), x2 = m.add_dof("x2");
+      m.add<point_mass>("m1", {m1}, x1);
+      m.add<point_mass>("m2", {m2}, x2);
+      m.add<linear_spring>("k1", {k1}, x1, m.ground());
+      m.add<linear_spring>("k2", {k2}, x2, x1);
+      if (beta > 0) {
+        m.add<linear_damper>("c1", {beta * k1}, x1, m.ground());
+        m.add<linear_damper>("c2", {beta * k2}, x2, x1);
+      }
+      m.add<initial_displacement>("x10", {1.0}, x1);
+      m.add<initial_displacement>("x20", {x20}, x2);
+      bdf_simulation sim(m, bo);
+      late = 0;
+      largest = 0;
+      sim.on_step([&](const auto& b) {
+        if (b.time() > 1e-3) ++late;  // after the stiff transient
+        largest = std::max(largest, b.statistics().last_step);
+      });
+      st = sim.run(o);
+      const double t = sim.time();
+      const double exact = qs0 * std::exp(-z * w * t) * (std::cos(wd * t) + z * w / wd * std::sin(wd * t));
+      es = std::abs(modal(ps, sim.u(x1), sim.u(x2)) - exact);
+      qf = std::abs(modal(pf, sim.u(x1), sim.u(x2)));
+    };
+    for (int k = 2; k <= 5; ++k) {
+      CAPTURE(k);
+      double es = 0, qf = 0;
+      run_statistics st;
+      // Fixed steps of 1e-3 s: w_fast h = 628.
+      run({.max_order = k, .fixed_order = true}, fixed(1.125, 1e-3), 1.001, 0.0, es, qf, st);
+      MESSAGE("BDF" << k << " h = 1e-3: slow-mode error " << es << ", stiff mode " << qf << " of " << modal(pf, 1.0, 1.001));
+      CHECK(es < 1e-4);
+      CHECK(qf < 1e-6 * std::abs(modal(pf, 1.0, 1.001)));
+    }
+    // With error control: the stiff mode excited and damped (zeta = 5 %). Its transient
+    // (velocities of 600 m/s decaying as exp(-3e4 t)) is part of the exact solution and is
+    // resolved (about 2000 steps in the first 0.6 ms); after it the steps follow the slow mode.
+    double es = 0, qf = 0;
+    run_statistics st;
+    run({}, controlled(1.125, 1e-6, 0.1), 1.001, 0.1 / std::sqrt(lam_f), es, qf, st);
+    MESSAGE("error control 1e-6: slow-mode error " << es << ", stiff mode " << qf << ", " << st.steps << " steps");
+    MESSAGE(late << " steps after t = 1e-3, largest step " << largest);
+    CHECK(late < 300);        // resolving the stiff period of 1e-5 s would take 1e5 steps
+    CHECK(largest > 1e-2);    // 1000 stiff periods
+    CHECK(es < 1e-4);
+    CHECK(qf < 1e-9);
+  }
+
+  TEST_CASE("a hydraulic volume: the absolute tolerance is DABSX times the DOF's nominal pressure") {
+    // (V / B) p' = -p / R: p = p0 exp(-t B / (V R)); p0 = 100 bar, time constant 1.33 s, to
+    // t = 30 s (p falls to 1.7e-3 Pa, where the absolute tolerance governs).
+    const double v = 2e-4, b = 1.5e9, r = 1e13, p0 = 1e7, end = 30, tol = 1e-6;
+    const double lambda = b / (v * r);
+    auto run = [&](bool unit_scale, double& err_start, double& err_end, run_statistics& st) {
+      model<hydraulic_volume, laminar_orifice, initial_velocity> md;
+      const dof p = md.add_dof("p");
+      md.add<hydraulic_volume>("vol", {.volume = v, .bulk_modulus = b}, p);
+      md.add<laminar_orifice>("orifice", {r}, p, md.ground());
+      md.add<initial_velocity>("p0", {p0}, p);
+      if (unit_scale) md.set_scale(p, {1.0, 1e-5});
+      bdf_simulation sim(md);
+      err_start = 0;
+      sim.on_step([&](const auto& s) {
+        if (s.time() <= 5) err_start = std::max(err_start, std::abs(s.v(p) - p0 * std::exp(-lambda * s.time())) / p0);
+      });
+      st = sim.run(controlled(end, tol, 10.0));
+      err_end = std::abs(sim.v(p) - p0 * std::exp(-lambda * end));
+    };
+    double e1 = 0, a1 = 0, e2 = 0, a2 = 0;
+    run_statistics s1, s2;
+    run(false, e1, a1, s1);
+    run(true, e2, a2, s2);
+    MESSAGE("hydraulic scale 1e5 Pa: rel error (t <= 5) " << e1 << ", |p - p_exact|(30 s) " << a1 << " Pa, " << s1.steps
+                                                           << " steps");
+    MESSAGE("scale 1 Pa: rel error (t <= 5) " << e2 << ", |p - p_exact|(30 s) " << a2 << " Pa, " << s2.steps << " steps");
+    CHECK(default_scale(domain::hydraulic).potential == 1e5);
+    // While p is large the relative tolerance governs: both runs within 20 DRLTX.
+    CHECK(e1 < 20 * tol);
+    CHECK(e2 < 20 * tol);
+    // In the tail the absolute tolerance DABSX * potential governs: 0.1 Pa and 1e-6 Pa.
+    CHECK(a1 < 20 * tol * 1e5);
+    CHECK(a2 < 20 * tol * 1.0);
+    CHECK(s2.steps > s1.steps);
+  }
+
+  TEST_CASE("bad BDF options are refused with invalid_option and a clear message") {
+    model<point_mass, linear_spring, initial_displacement> m;
+    const dof x = m.add_dof("x");
+    m.add<point_mass>("m", {1.0}, x);
+    m.add<linear_spring>("k", {1.0}, x, m.ground());
+    auto refused = [&](const bdf_options& o, const std::string& text) {
+      try {
+        bdf_simulation sim(m, o);
+        FAIL("accepted");
+      } catch (const error& e) {
+        CHECK(e.code() == error_code::invalid_option);
+        CHECK(std::string(e.what()).find(text) != std::string::npos);
+      }
+    };
+    refused({.max_order = 0}, "BDF: the maximum order MAXORD = 0 is outside 1..5");
+    refused({.max_order = 6}, "MAXORD = 6 is outside 1..5");
+    refused({.newton_tolerance = 0}, "the Newton tolerance 0 must be in (0, 1]");
+    refused({.newton_tolerance = 1.5}, "the Newton tolerance 1.5 must be in (0, 1]");
+    refused({.initial_step = -1}, "the initial step -1 must be a finite number >= 0");
+    bdf_simulation sim(m);
+    run_options o = controlled(1.0, 1e-3, 0.1);
+    o.drltx = 0;
+    o.dabsx = 0;
+    CHECK_THROWS_WITH_AS(sim.run(o), doctest::Contains("BDF: error control needs DABSX + DRLTX > 0"), error);
+    o.error_control = false;
+    CHECK_THROWS_WITH_AS(sim.run(o), doctest::Contains("BDF: DABSX + DRLTX must be > 0"), error);
+    o = controlled(1.0, 1e-3, 0.1);
+    o.smin = 1.0;
+    CHECK_THROWS_WITH_AS(sim.run(o), doctest::Contains("SMIN = 1 is above SMAX = 0.1"), error);
+    sim.run(controlled(1.0, 1e-3, 0.1));
+    CHECK_THROWS_WITH_AS(sim.run(controlled(0.5, 1e-3, 0.1)), doctest::Contains("END = 0.5 must be after the current time 1"),
+                         error);
+    CHECK_THROWS_WITH_AS(sim.statistic("FOO"), doctest::Contains("unknown statistic 'FOO'"), error);
+    CHECK_THROWS_WITH_AS(sim.u(dof{7}), doctest::Contains("DOF index 7 is not a DOF of this model"), error);
+  }
+
+  TEST_CASE("SMIN that cannot reach the tolerance fails with step_too_small naming the DOF") {
+    model<point_mass, linear_spring, initial_displacement> m;
+    const dof x = m.add_dof("x");
+    m.add<point_mass>("m", {1.0}, x);
+    m.add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
+    m.add<initial_displacement>("x0", {1.0}, x);
+    bdf_simulation sim(m);
+    run_options o = controlled(1.0, 1e-10, 0.1);
+    o.smin = 0.05;
+    try {
+      sim.run(o);
+      FAIL("no failure");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::step_too_small);
+      CHECK(std::string(e.what()).find("SMIN cannot reach the requested accuracy: the local error of DOF 'x'") !=
+            std::string::npos);
     }
   }
 }
