@@ -24,7 +24,7 @@ for problem in $(awk -F, 'NR > 1 { print $1 }' "$csv" | sort -u); do
     [ -e "$f" ] || continue
     # points stay in sweep order (loosest setting first), so a line follows its sweep
     label="$(basename "$f" .dat)"; label="${label#${problem}__}"; label="${label//_/ }"
-    case "$label" in pradis*) style="lw 2";; *) style="lw 1 dt 2";; esac
+    case "$label" in "pradis BDF") style="lw 3 lc rgb '#8c564b'";; pradis*) style="lw 2";; *) style="lw 1 dt 2";; esac
     plots+=("'$f' using 1:2 with linespoints $style pt 7 ps 0.6 title '$label'")
   done
   [ ${#plots[@]} -gt 0 ] || continue

@@ -10,7 +10,9 @@ looser than the cheapest front point costs that point's time (no extrapolation);
 an error tighter than the series' best is not reached. pradis's best is the
 minimum cost over all pradis series (error-controlled and fixed-step).
 
-Usage: scripts/work_precision_ratios.py [CSV] [--peer IDA] [--from 1e-3] [--to 1e-6]
+Usage: scripts/work_precision_ratios.py [CSV] [--peer IDA] [--from 1e-3] [--to 1e-6] [--method NAME]
+--method NAME: pradis's series of that method only (e.g. BDF: the error-controlled BDF driver);
+--skip-method NAME: all of pradis's series but those of that method.
 Prints, per problem, the ratio at each decade, the median ratio over 13 errors
 log-spaced from --from to --to, and which pradis series is best at each decade.
 """
@@ -43,7 +45,7 @@ def cost(fr, e):
 
 
 def main(argv):
-    path, peer, lo, hi = "docs/data/work_precision.csv", "IDA", 1e-3, 1e-6
+    path, peer, lo, hi, method, skip = "docs/data/work_precision.csv", "IDA", 1e-3, 1e-6, None, None
     i = 0
     while i < len(argv):
         a = argv[i]
@@ -51,6 +53,10 @@ def main(argv):
             peer = argv[i + 1]; i += 1
         elif a == "--from":
             lo = float(argv[i + 1]); i += 1
+        elif a == "--skip-method":
+            skip = argv[i + 1]; i += 1
+        elif a == "--method":
+            method = argv[i + 1]; i += 1
         elif a == "--to":
             hi = float(argv[i + 1]); i += 1
         else:
@@ -77,7 +83,8 @@ def main(argv):
         pf = fronts[peers[0]]
 
         def best_pradis(e):
-            cands = [(cost(fr, e), k[1]) for k, fr in fronts.items() if k[0] == "pradis"]
+            cands = [(cost(fr, e), k[1]) for k, fr in fronts.items()
+                     if k[0] == "pradis" and (method is None or k[1] == method) and k[1] != skip]
             cands = [c for c in cands if c[0] is not None]
             return min(cands) if cands else (None, None)
 
