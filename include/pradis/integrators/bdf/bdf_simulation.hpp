@@ -31,7 +31,7 @@
 /// more than newton_options::coefficient_change since the factorisation (a kept
 /// one has its corrections scaled by 2 / (1 + c / c_J)), at the start of every
 /// stage and before a failed step is redone. PRADIS's DABSU/DRLTU/DABSI/DRLTI
-/// are not used.
+/// are not used, nor is newton_options::method (always modified Newton).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -406,8 +406,8 @@ class bdf_simulation<model<Es...>, Solver> {
             hist_.set_step(opt_.smin);
           } else {
             raise(error(error_code::step_too_small,
-                        "SMIN cannot reach the requested accuracy: the local error of DOF '" + m_.dof_name(worst) +
-                            "' is above its tolerance at t = " + num(t_) + " with step " + num(h) + " (order " +
+                        "SMIN cannot reach the requested accuracy: the local error of DOF '" +
+                            (worst >= 0 ? m_.dof_name(worst) : std::string("?")) + "' is above its tolerance at t = " + num(t_) + " with step " + num(h) + " (order " +
                             std::to_string(hist_.order()) + ")",
                         {}, {}, worst));
           }

@@ -11,8 +11,8 @@
 /// Problems in Differential-Algebraic Equations, SIAM 1996, chapter 5 (DASSL);
 /// Hindmarsh et al., SUNDIALS: Suite of nonlinear and differential/algebraic
 /// equation solvers, ACM TOMS 31 (2005) 363-396, section 2 (IDA)), with h the
-/// step to t_{n+1}, k the order and psi_i = t_{n+1} - t_{n+1-i-1}... written as
-/// in IDA: psi_{i-1} = t_{n+1} - t_{n+1-i}, alpha_i = h / psi_i,
+/// step to t_{n+1}, k the order and, as in IDA, psi_{i-1} = t_{n+1} - t_{n+1-i}
+/// (i = 1..k+1), alpha_i = h / psi_i,
 /// beta_i = prod_{j<i} psi_j(new) / psi_j(old), sigma_i = i! prod alpha_j,
 /// gamma_i = gamma_{i-1} + alpha_{i-1} / h. The history phi_j (j = 0..k+1) holds
 /// the modified divided differences of y; the predictor is
