@@ -54,6 +54,29 @@ struct quadratic_drag {
   }
 };
 
+/// A spring that reports a singular situation (code 75) from time T on (test-only element).
+struct breaks_at {
+  static constexpr pradis::passport passport{.name = "BREAKAT", .ext = 1, .par = 1, .adr = 1, .ign = 23};
+  static constexpr pradis::element_help help{.title = "test: unit spring failing from time T",
+                                             .name = "Unit spring with a singular situation from T on",
+                                             .field = "test",
+                                             .dofs = "1 - displacement [m]",
+                                             .parameters = "1 - time T [s]",
+                                             .work = "",
+                                             .special = "code 75 from T on"};
+  struct parameters {
+    double t = 0;
+  };
+  parameters p;
+  explicit breaks_at(parameters q) : p(q) {}
+  static breaks_at from_parameters(std::span<const double> v) { return breaks_at({v[0]}); }
+  void evaluate(const local_input<breaks_at>& in, local_output<breaks_at>& out, element_context& ctx) const {
+    if (ctx.time >= p.t) ctx.fail(error_code::singular_situation, "broken at t = " + to_text(ctx.time));
+    out.f(0) = in.u(0);
+    if (out.want_jacobian) out.K(0, 0) = 1;
+  }
+};
+
 constexpr double osc_w = 2 * std::numbers::pi;  // m = 1, k = w^2: period 1
 
 /// Error of the oscillator u'' + w^2 u = 0, u(0) = 1, v(0) = 0 at `end` under the BDF
@@ -348,5 +371,25 @@ TEST_SUITE("integrators/bdf") {
       CHECK(std::string(e.what()).find("SMIN cannot reach the requested accuracy: the local error of DOF 'x'") !=
             std::string::npos);
     }
+  }
+
+  TEST_CASE("a step that keeps failing down to SMIN ends the run with the element's message") {
+    model<point_mass, breaks_at> m;
+    const dof x = m.add_dof("x");
+    m.add<point_mass>("m", {1.0}, x);
+    m.add<breaks_at>("spring", {0.5}, x);
+    bdf_simulation sim(m);
+    run_options o = controlled(1.0, 1e-6, 0.1);
+    o.smin = 1e-6;
+    try {
+      sim.run(o);
+      FAIL("no failure");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::singular_situation);
+      CHECK(std::string(e.what()).find("broken at t = ") != std::string::npos);
+      CHECK(std::string(e.what()).find("persists at SMIN = 1e-06") != std::string::npos);
+    }
+    CHECK(sim.time() < 0.5);
+    CHECK(sim.statistics().rejected_steps > 0);
   }
 }
