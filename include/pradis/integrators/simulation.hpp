@@ -247,14 +247,15 @@ class simulation<model<Es...>, Scheme, Solver> {
  private:
   static std::string num(double x) { return detail::num(x); }
   Eigen::Index checked(dof d) const {
-    if (d.index < 0 || d.index >= s_.u.size()) bad_dof(d);
+    if (d.index < 0 || d.index >= s_.u.size() || !m_.owns(d)) bad_dof(d);
     return d.index;
   }
   [[noreturn]] void bad_dof(dof d) const {
     throw error(error_code::invalid_model,
                 "DOF index " + std::to_string(d.index) +
-                    (started_ ? " is not a DOF of this model (it has " + std::to_string(s_.u.size()) + " DOFs)"
-                              : " asked for before the first stage has run"),
+                    (!m_.owns(d) ? " belongs to another model than this simulation's"
+                     : started_  ? " is not a DOF of this model (it has " + std::to_string(s_.u.size()) + " DOFs)"
+                                 : " asked for before the first stage has run"),
                 {}, {}, d.index);
   }
   std::string_view scheme_label() const {
