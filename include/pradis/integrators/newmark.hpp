@@ -55,7 +55,12 @@ class alpha_scheme {
   void complete(double u0, double v0, double a0, double p0, double h, double v, double& u, double& a,
                 double& p) const noexcept {
     p = (v - v0 - h * (1.0 - p_.gamma) * p0) / (p_.gamma * h);
-    u = u0 + h * v0 + h * h * ((0.5 - p_.beta) * p0 + p_.beta * p);
+    // u = u0 + h v0 + h^2 ((1/2 - beta) p0 + beta p) with p substituted, so that
+    // u follows from the velocities: through p, a stiff DOF (omega h >> 1, where
+    // |p0| ~ |p| ~ omega^2 |u|) would lose u in the cancellation of p0 + p
+    // (Newmark: u = u0 + h (v0 + v) / 2 exactly, whatever p0 is).
+    const double r = p_.beta / p_.gamma;
+    u = u0 + h * ((1.0 - r) * v0 + r * v) + h * h * (0.5 - r) * p0;
     if (p_.alpha_m == 0.0 && p_.alpha_f == 0.0)
       a = p;
     else

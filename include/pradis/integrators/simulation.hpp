@@ -40,6 +40,7 @@
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/newton.hpp"
 #include "pradis/integrators/options.hpp"
+#include "pradis/integrators/precision.hpp"
 #include "pradis/integrators/step_control.hpp"
 #include "pradis/linalg/ordering.hpp"
 #include "pradis/linalg/sparse_lu.hpp"
@@ -77,6 +78,7 @@ class simulation<model<Es...>, Scheme, Solver> {
     opt_ = opt;
     if (!(opt.end > t_)) fail_option("END = " + num(opt.end) + " must be after the current time " + num(t_));
     newton_.invalidate();  // every stage starts with a fresh Jacobian
+    precision_warned_ = false;
     if (!started_) {
       zero_step();
     } else {
@@ -144,9 +146,8 @@ class simulation<model<Es...>, Scheme, Solver> {
   /// Current time.
   double time() const noexcept { return t_; }
   /// Displacement, velocity, acceleration of a DOF at the current time. Throw
-  /// invalid_model for a DOF outside the model (index out of range; a DOF of
-  /// another model with an index in range cannot be told apart) or before the
-  /// first stage.
+  /// invalid_model for a DOF outside the model (index out of range, or a DOF
+  /// handed out by another model) or before the first stage.
   double u(dof d) const { return s_.u(checked(d)); }
   double v(dof d) const { return s_.v(checked(d)); }
   double a(dof d) const { return s_.a(checked(d)); }
@@ -399,6 +400,11 @@ class simulation<model<Es...>, Scheme, Solver> {
       a_prev_ = s0_.a;
       h_prev_ = h;
       commit();
+      if (!precision_warned_)  // once per stage (precision.hpp)
+        if (auto l = detail::displacement_precision_loss(scheme_, asm_, s_, s0_, h, opt_, m_.scales())) {
+          log_.write(detail::precision_warning_text(*l, m_.dof_name(l->dof), t_, h));
+          precision_warned_ = true;
+        }
       return step_outcome::accepted;
     }
     last_failure_ = r.failure;
@@ -464,6 +470,7 @@ class simulation<model<Es...>, Scheme, Solver> {
   newton_solver<Solver> newton_;
   assembler<model_type> asm_;
   diagnostics log_;
+  bool precision_warned_ = false;  // a loss-of-precision warning was written in this stage
   std::vector<observer> observers_;
   std::vector<observer> step_observers_;
   global_state s_, s0_;
