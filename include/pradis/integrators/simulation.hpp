@@ -374,6 +374,14 @@ class simulation<model<Es...>, Scheme, Solver> {
   /// error control), commit. On failure or rejection the state is restored.
   step_outcome step(double h) {
     s0_ = s_;
+    const double shift = pseudo_acceleration_shift(scheme_, h, h_prev_);  // newmark.hpp
+    if (shift != 0) {
+      p_start_ = s_.p;  // restored if the step is not accepted
+      for (int i = 0; i < asm_.equations(); ++i) {
+        const auto d = asm_.dof_of(i);
+        s0_.p(d) += shift * (s0_.a(d) - a_prev_(d));
+      }
+    }
     const double t0 = t_;
     t_ = t0 + h;
     detail::apply_sources(m_, s_, t_);
@@ -390,6 +398,7 @@ class simulation<model<Es...>, Scheme, Solver> {
       check_finite(h);
       if (opt_.error_control && !error_accepts(h)) {
         s_ = s0_;
+        if (shift != 0) s_.p = p_start_;
         t_ = t0;
         return step_outcome::error_rejected;
       }
@@ -409,6 +418,7 @@ class simulation<model<Es...>, Scheme, Solver> {
     }
     last_failure_ = r.failure;
     s_ = s0_;
+    if (shift != 0) s_.p = p_start_;
     t_ = t0;
     return step_outcome::failed;
   }
@@ -484,6 +494,7 @@ class simulation<model<Es...>, Scheme, Solver> {
   double h_error_ = 0;
   double h_prev_ = 0;
   Eigen::VectorXd a_prev_;
+  Eigen::VectorXd p_start_;  // p at the step's start before pseudo_acceleration_shift
   double recommended_ = std::numeric_limits<double>::infinity();
   int successes_ = 0;
   bool started_ = false;
