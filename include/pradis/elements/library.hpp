@@ -28,6 +28,7 @@
 #include "pradis/elements/pneumatic/orifice.hpp"
 #include "pradis/elements/planar/planar_inertia.hpp"
 #include "pradis/elements/planar/planar_link.hpp"
+#include "pradis/elements/planar/planar_rigid_link.hpp"
 #include "pradis/elements/spatial/beam.hpp"
 #include "pradis/elements/spatial/coupling.hpp"
 #include "pradis/elements/spatial/initial_rotation.hpp"
@@ -45,7 +46,7 @@ namespace pradis::elements {
 using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, constant_force, sine_force,
                                   displacement_source, velocity_source, initial_displacement, initial_velocity>;
 /// Planar mechanics.
-using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass>;
+using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass, planar_rigid_link>;
 /// Spatial mechanics (rotational nodes with the hidden fourth potential, docs/rotations.md).
 using spatial_elements = type_list<rigid_body, spatial_force, spatial_torque, body_force, body_torque, initial_rotation>;
 // --- spatial connecting elements (SD3, RSD3, SPH3, REV3, SHC3) ---

@@ -125,6 +125,7 @@ class newton_solver {
         if (k >= nw.itr) break;
         for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
         if (jac) {
+          mark_multipliers(as);
           valid_ = false;
           solver_.factorize(as.values());
           ++stats.factorizations;
@@ -141,6 +142,7 @@ class newton_solver {
         double norm = 0;
         if (!full) {
           for (int i = 0; i < ne; ++i) {
+            if (multiplier_[static_cast<std::size_t>(i)]) continue;
             const auto d = as.dof_of(i);
             const double dv = rhs[static_cast<std::size_t>(i)];
             const double w =
@@ -173,12 +175,13 @@ class newton_solver {
           const double dv = rhs[static_cast<std::size_t>(i)];
           finite = finite && std::isfinite(dv);
           s.v(d) += dv;
+          scheme.complete(s0.u(d), s0.v(d), s0.a(d), s0.p(d), h, s.v(d), s.u(d), s.a(d), s.p(d));
+          if (multiplier_[static_cast<std::size_t>(i)]) continue;  // judged through the residuals it balances
           correction_ok = correction_ok && factor * std::abs(dv) <= nw.dabsu * scale[static_cast<std::size_t>(d)].potential +
                                                                         nw.drltu * std::abs(s.v(d));
           roundoff = roundoff && std::abs(dv) <= 64 * std::numeric_limits<double>::epsilon() *
                                                      (std::abs(s.v(d)) + std::abs(s0.v(d)) +
                                                       h * (std::abs(s.a(d)) + std::abs(s0.a(d))));
-          scheme.complete(s0.u(d), s0.v(d), s0.a(d), s0.p(d), h, s.v(d), s.u(d), s.a(d), s.p(d));
         }
         if (!finite) break;
         // Modified Newton: slow convergence, or a rate at which the correction
@@ -194,7 +197,28 @@ class newton_solver {
     return out;
   }
 
+  /// Marks the equations whose diagonal of J is structurally or numerically zero:
+  /// Lagrange multipliers and the currents of ideal voltage sources (their rows
+  /// are constraints). Their corrections are not tested against DABSU/DRLTU: in
+  /// an index-3 constraint the multiplier is determined only to about
+  /// eps |u| m / h^2 (a round-off of the positions is an acceleration (4 / h^2)
+  /// eps |u|), far above DRLTU |N| at small steps, so the test could never pass.
+  /// They are judged through the residuals they enter (the force balance of the
+  /// DOFs they act on, DABSI/DRLTI) and the constraint rows themselves, and the
+  /// corrections of every other unknown.
+  template <class Assembler>
+  void mark_multipliers(const Assembler& as) {
+    const auto& pat = as.pattern();
+    const auto vals = as.values();
+    multiplier_.assign(static_cast<std::size_t>(as.equations()), 0);
+    for (int i = 0; i < as.equations(); ++i) {
+      const int q = pat.find(i, i);
+      multiplier_[static_cast<std::size_t>(i)] = q < 0 || vals[static_cast<std::size_t>(q)] == 0.0;
+    }
+  }
+
   Solver solver_;
+  std::vector<char> multiplier_;  // per equation: a zero diagonal (mark_multipliers)
   bool valid_ = false;
   jacobian_coefficients jac_c_{};
   double last_rate_ = -1;  // the last rate estimate with the kept Jacobian (-1: none)
