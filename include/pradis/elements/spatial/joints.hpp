@@ -69,6 +69,9 @@ inline constexpr std::string_view joint_dof_help =
     "10 - rotation potential q1 of body b's rotational node [-]\n"
     "11 - q2 of body b [-]\n"
     "12 - q3 of body b [-] (connect DOFs 1-6 or 7-12 to the ground for a joint to the ground)";
+/// The parameter lines 1..12 (the joint geometry) alone, for joints without further
+/// parameters (SPH3X).
+inline constexpr std::string_view joint_geometry_help = PRADIS_JOINT_GEOMETRY_HELP;
 /// The parameter lines of the help text of SPH3.
 inline constexpr std::string_view spherical_joint_parameter_help =
     PRADIS_JOINT_GEOMETRY_HELP
