@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <vector>
 
 #include "pradis/elements/library.hpp"
@@ -167,6 +168,23 @@ TEST_SUITE("elements/LINKX rigid link") {
     CHECK(e5 / e6 > 9.5);
     CHECK(e5 / e6 < 10.5);
     CHECK(e6 > 50 * run_chain(0, 1e-4).tip_error);  // the exact link is far closer
+  }
+
+  TEST_CASE("the log notes that NEWMARK leaves multipliers undamped; HHT writes no such note") {
+    for (const alpha_family& scheme : {alpha_family(newmark{}), alpha_family(hht{-0.1})}) {
+      link_model mod;
+      const dof x = mod.add_dof("x"), y = mod.add_dof("y");
+      mod.add<point_mass>("mx", {1.0}, x);
+      mod.add<point_mass>("my", {1.0}, y);
+      mod.add<planar_rigid_link>("rod", {0.0, 0.0, 1.0, 0.0}, mod.ground(), mod.ground(), x, y);
+      mod.add<constant_force>("weight", {-g}, y);
+      simulation<link_model, alpha_family> sim(mod, scheme);
+      std::ostringstream log;
+      sim.log().to(log);
+      sim.run({.end = 0.01, .smax = 1e-3});
+      const bool noted = log.str().find("note: the model has constraint equations") != std::string::npos;
+      CHECK(noted == (scheme.label() == "NEWMARK"));
+    }
   }
 
   TEST_CASE("bad parameters: coincident points and non-finite coordinates are code 100") {

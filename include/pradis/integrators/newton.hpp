@@ -54,6 +54,13 @@ class newton_solver {
   const Solver& linear_solver() const noexcept { return solver_; }
   /// Forgets the factorisation: the next iteration evaluates and factorises J.
   void invalidate() noexcept { valid_ = false; }
+  /// Whether the last Jacobian had equations with a zero diagonal (Lagrange
+  /// multipliers, currents of ideal voltage sources).
+  bool has_multipliers() const noexcept {
+    for (char c : multiplier_)
+      if (c) return true;
+    return false;
+  }
   /// Whether a factorisation is kept for the next step.
   bool has_factorization() const noexcept { return valid_; }
 

@@ -20,6 +20,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pradis/assembly/assembler.hpp"
@@ -70,6 +71,37 @@ inline std::string precision_warning_text(const precision_loss& l, const std::st
          num(l.tolerance) + "): it is computed from h |v| + h^2 |a| = " + num(l.magnitude) +
          ", an element far stiffer than the step resolves (omega h >> 1); take a smaller step, or NEWMARK, whose "
          "displacement does not depend on the acceleration";
+}
+
+/// The warning at the end of an error-controlled stage in which SMAX, not the
+/// tolerance, decided at least 90 % of the steps.
+inline std::string smax_warning_text(long steps_at_smax, long controlled_steps, const run_options& opt) {
+  return "warning: error control: " + std::to_string(steps_at_smax) + " of " + std::to_string(controlled_steps) +
+         " steps were SMAX = " + num(opt.smax) + ": the local error stayed below DABSX = " +
+         num(effective_dabsx(opt)) + " + DRLTX = " + num(opt.drltx) +
+         " |v|, so SMAX, not the tolerance, set the accuracy of this stage";
+}
+
+/// Whether a scheme has no numerical damping (the alpha family with alpha_m =
+/// alpha_f = 0 and gamma = 1/2: NEWMARK's average acceleration); false for
+/// schemes outside the family.
+template <class Scheme>
+bool undamped(const Scheme& s) noexcept {
+  if constexpr (AlphaFamilyIntegrator<Scheme>) {
+    const alpha_parameters q = s.coefficients_set();
+    return q.alpha_m == 0.0 && q.alpha_f == 0.0 && q.gamma == 0.5;
+  } else {
+    return false;
+  }
+}
+
+/// The note at the end of a stage whose model has constraint rows (zero diagonal:
+/// Lagrange multipliers) integrated by an undamped scheme (docs/joints.md).
+inline std::string undamped_constraint_note(std::string_view scheme) {
+  return "note: the model has constraint equations (Lagrange multipliers, e.g. LINKX, SPH3X, VDC2) and " +
+         std::string(scheme) +
+         " has no numerical damping: their multipliers (joint forces, source currents) may alternate from step "
+         "to step; HHT or GALPHA damp the alternation (the motion is not affected)";
 }
 
 }  // namespace pradis::detail

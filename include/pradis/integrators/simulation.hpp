@@ -135,10 +135,9 @@ class simulation<model<Es...>, Scheme, Solver> {
     }
     t_ = opt.end;
     if (controlled_steps >= 10 && steps_at_smax >= 0.9 * static_cast<double>(controlled_steps))
-      log_.write("warning: error control: " + std::to_string(steps_at_smax) + " of " +
-                 std::to_string(controlled_steps) + " steps were SMAX = " + num(opt.smax) +
-                 ": the local error stayed below DABSX = " + num(effective_dabsx(opt)) + " + DRLTX = " +
-                 num(opt.drltx) + " |v|, so SMAX, not the tolerance, set the accuracy of this stage");
+      log_.write(detail::smax_warning_text(steps_at_smax, controlled_steps, opt));
+    if (newton_.has_multipliers() && detail::undamped(scheme_))
+      log_.write(detail::undamped_constraint_note(scheme_label()));
     return stats_ - before;
   }
 
@@ -165,18 +164,7 @@ class simulation<model<Es...>, Scheme, Solver> {
   /// (iterations of the last step), "STEP" (last step size), "NREJ" (rejected
   /// steps), "NFACT" (factorisations), "NITTOT" (all Newton iterations),
   /// "NJAC" (evaluations with the Jacobian), "NEVAL" (all model evaluations).
-  double statistic(std::string_view key) const {
-    if (key == "NSTEP") return static_cast<double>(stats_.steps);
-    if (key == "NITER") return stats_.last_iterations;
-    if (key == "STEP") return stats_.last_step;
-    if (key == "NREJ") return static_cast<double>(stats_.rejected_steps);
-    if (key == "NFACT") return static_cast<double>(stats_.factorizations);
-    if (key == "NITTOT") return static_cast<double>(stats_.newton_iterations);
-    if (key == "NJAC") return static_cast<double>(stats_.jacobian_evaluations);
-    if (key == "NEVAL") return static_cast<double>(stats_.evaluations);
-    throw error(error_code::invalid_option, "unknown statistic '" + std::string(key) +
-                                                "' (known: NSTEP, NITER, STEP, NREJ, NFACT, NITTOT, NJAC, NEVAL)");
-  }
+  double statistic(std::string_view key) const { return statistic_by_name(stats_, key); }
   /// The model.
   model_type& get_model() noexcept { return m_; }
   const model_type& get_model() const noexcept { return m_; }
