@@ -10,6 +10,8 @@
 #include <string>
 #include <string_view>
 
+#include "pradis/core/error.hpp"
+
 namespace pradis {
 
 /// How Newton treats the Jacobian within and across steps.
