@@ -12,6 +12,7 @@
 #include <sstream>
 #include <vector>
 
+#include "../../bench/chain_reference.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/simulation.hpp"
 
@@ -24,42 +25,8 @@ constexpr double g = 9.81;
 
 newton_options tight() { return {.dabsu = 1e-10, .drltu = 1e-10, .dabsi = 1e-9, .drlti = 1e-12, .itr = 10}; }
 
-// The chain of n point masses m joined by rigid links of length l, the first
-// hinged at the origin, horizontal and at rest at t = 0, under gravity -Y.
-// Independent reference: Lagrange's equations in the absolute link angles theta_j,
-//   sum_k c_jk [cos(theta_j - theta_k) theta_k'' + sin(theta_j - theta_k) theta_k'^2]
-//       = -(g / l) cos(theta_j) (n - j),   c_jk = n - max(j, k)   (0-based j, k),
-// integrated with the classical Runge-Kutta method (error ~h^4, far below pradis's).
-struct chain_state {
-  Eigen::VectorXd th, om;
-};
-Eigen::VectorXd chain_acceleration(const Eigen::VectorXd& th, const Eigen::VectorXd& om, double l) {
-  const int n = static_cast<int>(th.size());
-  Eigen::MatrixXd a(n, n);
-  Eigen::VectorXd b(n);
-  for (int j = 0; j < n; ++j) {
-    b(j) = -(g / l) * std::cos(th(j)) * (n - j);
-    for (int k = 0; k < n; ++k) {
-      const double c = n - std::max(j, k);
-      a(j, k) = c * std::cos(th(j) - th(k));
-      b(j) -= c * std::sin(th(j) - th(k)) * om(k) * om(k);
-    }
-  }
-  return a.partialPivLu().solve(b);
-}
-chain_state chain_reference(int n, double l, double t_end, int steps) {
-  chain_state s{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
-  const double h = t_end / steps;
-  for (int i = 0; i < steps; ++i) {
-    const Eigen::VectorXd k1t = s.om, k1o = chain_acceleration(s.th, s.om, l);
-    const Eigen::VectorXd k2t = s.om + 0.5 * h * k1o, k2o = chain_acceleration(s.th + 0.5 * h * k1t, k2t, l);
-    const Eigen::VectorXd k3t = s.om + 0.5 * h * k2o, k3o = chain_acceleration(s.th + 0.5 * h * k2t, k3t, l);
-    const Eigen::VectorXd k4t = s.om + h * k3o, k4o = chain_acceleration(s.th + h * k3t, k4t, l);
-    s.th += h / 6 * (k1t + 2 * k2t + 2 * k3t + k4t);
-    s.om += h / 6 * (k1o + 2 * k2o + 2 * k3o + k4o);
-  }
-  return s;
-}
+using pradis_reference::chain_reference;
+using pradis_reference::chain_state;
 }  // namespace
 
 TEST_SUITE("elements/LINKX rigid link") {
@@ -112,7 +79,8 @@ TEST_SUITE("elements/LINKX rigid link") {
   chain_result run_chain(double k, double h) {
     const int n = 10;
     const double l = 0.1, m = 0.05, t_end = 0.4;
-    static const chain_state ref = chain_reference(n, l, t_end, 8000);  // RK4, h = 5e-5
+    // Independent reference (bench/chain_reference.hpp): RK4 in the link angles, h = 5e-5.
+    static const chain_state ref = chain_reference(n, l, g, t_end, 8000);
     link_model mod;
     std::vector<dof> x(n), y(n);
     std::vector<element_ref<planar_rigid_link>> links;
