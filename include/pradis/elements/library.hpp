@@ -50,12 +50,12 @@ using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, cons
 using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass, planar_rigid_link>;
 /// Spatial mechanics (rotational nodes with the hidden fourth potential, docs/rotations.md).
 using spatial_elements = type_list<rigid_body, spatial_force, spatial_torque, body_force, body_torque, initial_rotation>;
-// --- spatial connecting elements (SD3, RSD3, SPH3, REV3, SHC3, SPH3X) ---
+// --- spatial connecting elements (SD3, RSD3, SPH3, REV3, SHC3, SPH3X, REV3X) ---
 /// Spatial connecting elements: spring-dampers and penalty joints between bodies, and the
 /// shaft coupling from a one-dimensional rotation to a spatial node (docs/rotations.md).
 using spatial_connector_elements =
     type_list<spatial_spring_damper, rotational_spring_damper, spherical_joint, revolute_joint, shaft_coupling,
-              exact_spherical_joint>;
+              exact_spherical_joint, exact_revolute_joint>;
 // --- end of spatial connecting elements ---
 /// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md).
 using beam_elements = type_list<elastic_beam, beam_inertia>;
