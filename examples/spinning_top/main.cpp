@@ -11,9 +11,11 @@
 // along the axis), the polar and azimuth angles of the axis and the joint gap, as
 // CSV, and a plot (PNG, with gnuplot) unless --no-plot.
 //
-// Usage: spinning_top [output-directory] [--no-plot] [--quick]
-//        (--quick: 0.5 s instead of 5 s, for the ctest smoke run)
+// Usage: spinning_top [output-directory] [--no-plot] [--quick] [--k STIFFNESS] [--exact]
+//        (--quick: 0.5 s instead of 5 s, for the ctest smoke run; --k: the penalty
+//        stiffness of SPH3 [N/m], default 1e6; --exact: the exact joint SPH3X instead)
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -33,19 +35,33 @@ int main(int argc, char** argv) try {
   using spatial::vec3;
   std::string dir = "out";
   bool plot = true, quick = false;
+  pradis_examples::top_parameters params;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--no-plot") plot = false;
     else if (a == "--quick") quick = true;
-    else if (a == "--help" || a == "-h") {
-      std::cout << "usage: spinning_top [output-directory] [--no-plot] [--quick]\n";
+    else if (a == "--exact") params.exact_joint = true;
+    else if (a == "--k") {
+      std::size_t used = 0;
+      const std::string v = i + 1 < argc ? argv[++i] : "";
+      try {
+        params.k = std::stod(v, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (v.empty() || used != v.size() || !(params.k > 0) || !std::isfinite(params.k)) {
+        std::cerr << "spinning_top: --k needs a finite stiffness > 0 [N/m], got '" << v << "'\n";
+        return 2;
+      }
+    } else if (a == "--help" || a == "-h") {
+      std::cout << "usage: spinning_top [output-directory] [--no-plot] [--quick] [--k STIFFNESS] [--exact]\n";
       return 0;
     } else dir = a;
   }
   std::filesystem::create_directories(dir);
 
   const double pi = std::numbers::pi;
-  pradis_examples::spinning_top top;
+  pradis_examples::spinning_top top(params);
   auto& m = top.m;
   const rotation_node r = top.r;
   const double l = top.l;
@@ -53,7 +69,9 @@ int main(int argc, char** argv) try {
   io::table out({"axis tip X [m]", "axis tip Y [m]", "axis tip Z [m]", "polar angle [deg]", "azimuth [deg]",
                  "joint gap [m]"});
   simulation sim(m);
+  double max_gap = 0;
   sim.on_output([&](const auto& s) {
+    max_gap = std::max(max_gap, s.get_model().work("tip")[0]);
     const vec3 ax = spatial::node_rotation(s, r).col(2);
     const vec3 tip = 2 * l * ax;  // the pivot stays at the origin (up to the joint gap)
     out.add_row(s.time(), {tip.x(), tip.y(), tip.z(), std::acos(ax.z()) * 180 / pi,
@@ -67,6 +85,8 @@ int main(int argc, char** argv) try {
   out.write_csv(csv);
   std::cout << "spinning_top: " << out.rows() << " output rows to " << csv << "\n";
   const auto& st = sim.statistics();
+  std::cout << (params.exact_joint ? "joint: SPH3X (exact)" : "joint: SPH3, k = " + std::to_string(params.k) + " N/m")
+            << "; largest joint gap " << max_gap << " m\n";
   std::cout << "steps " << st.steps << ", rejected " << st.rejected_steps << ", Newton iterations "
             << st.newton_iterations << "\n";
   if (plot) {

@@ -5,28 +5,44 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "pradis/elements/library.hpp"
 
 namespace pradis_examples {
 
-/// A rigid body (BODY3) symmetric about its Z axis, its tip held at the origin by a
-/// spherical joint (SPH3, penalty stiffness k), under gravity (a constant F3 on the
-/// centre of mass), spinning at w3 about its axis, released at theta0 from the
-/// vertical with no precession or nutation rate (Goldstein, Classical Mechanics,
-/// 3rd ed., section 5.7).
-struct spinning_top {
-  static constexpr double g = 9.81;
+/// The data of the scene (all settable from outside, e.g. the example's --k and --exact).
+struct top_parameters {
   double mass = 1.0;      ///< mass [kg]
   double l = 0.1;         ///< tip to centre of mass [m]
   double j1 = 0.01;       ///< transverse inertia about the centre of mass [kg m^2]
   double j3 = 0.02;       ///< polar inertia [kg m^2]
   double w3 = 30.0;       ///< spin [rad/s]
   double theta0 = 30 * std::numbers::pi / 180;  ///< initial tilt [rad]
-  double k = 1e6;         ///< joint penalty stiffness [N/m]
+  double k = 1e6;         ///< joint penalty stiffness [N/m] (SPH3; unused with exact_joint)
+  bool exact_joint = false;  ///< hold the tip with the exact SPH3X instead of the penalty SPH3
+};
 
-  using model_type = pradis::model<pradis::elements::rigid_body, pradis::elements::spherical_joint,
-                                   pradis::elements::spatial_force, pradis::elements::initial_rotation>;
+/// A rigid body (BODY3) symmetric about its Z axis, its tip held at the origin by a
+/// spherical joint (SPH3, penalty stiffness k, or the exact SPH3X), under gravity (a
+/// constant F3 on the centre of mass), spinning at w3 about its axis, released at
+/// theta0 from the vertical with no precession or nutation rate (Goldstein, Classical
+/// Mechanics, 3rd ed., section 5.7).
+struct spinning_top {
+  static constexpr double g = 9.81;
+  double mass;        ///< mass [kg]
+  double l;           ///< tip to centre of mass [m]
+  double j1;          ///< transverse inertia about the centre of mass [kg m^2]
+  double j3;          ///< polar inertia [kg m^2]
+  double w3;          ///< spin [rad/s]
+  double theta0;      ///< initial tilt [rad]
+  double k;           ///< joint penalty stiffness [N/m]
+  bool exact_joint;   ///< SPH3X instead of SPH3
+
+  using model_type =
+      pradis::model<pradis::elements::rigid_body, pradis::elements::spherical_joint,
+                    pradis::elements::exact_spherical_joint, pradis::elements::spatial_force,
+                    pradis::elements::initial_rotation>;
   model_type m;
   std::vector<pradis::dof> x;  ///< the centre of mass
   pradis::rotation_node r;     ///< the top's orientation
@@ -37,7 +53,8 @@ struct spinning_top {
   /// The axis (body Z) at the start, after the tilt about X.
   pradis::spatial::vec3 axis0() const { return {0, -std::sin(theta0), std::cos(theta0)}; }
 
-  spinning_top() {
+  explicit spinning_top(const top_parameters& p = {})
+      : mass(p.mass), l(p.l), j1(p.j1), j3(p.j3), w3(p.w3), theta0(p.theta0), k(p.k), exact_joint(p.exact_joint) {
     using namespace pradis::elements;
     x = m.add_dofs(3, "x");
     r = m.add_rotation_node("r");
@@ -45,9 +62,11 @@ struct spinning_top {
     const pradis::spatial::vec3 a = axis0();
     m.add<rigid_body>("top", {mass, j1, j1, j3, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
     // Joint point A: the origin (ground); B: the tip, l below the centre of mass along body Z.
-    m.add<spherical_joint>("tip", {{0, 0, 0, 0, 0, 0, l * a.x(), l * a.y(), l * a.z(), 0, 0, -l}, k,
-                                   joint_damping()},
-                           G, G, G, G, G, G, x[0], x[1], x[2], r);
+    const pradis::elements::detail::joint_geometry tip{0, 0, 0, 0, 0, 0, l * a.x(), l * a.y(), l * a.z(), 0, 0, -l};
+    if (exact_joint)
+      m.add<exact_spherical_joint>("tip", {tip}, G, G, G, G, G, G, x[0], x[1], x[2], r);
+    else
+      m.add<spherical_joint>("tip", {tip, k, joint_damping()}, G, G, G, G, G, G, x[0], x[1], x[2], r);
     m.add<spatial_force>("gravity", {0, 0, -mass * g, 0, 0, 0, 0, 0}, x[0], x[1], x[2]);
     m.add<initial_rotation>("start", {1, 0, 0, theta0 * 180 / std::numbers::pi, w3 * a.x(), w3 * a.y(), w3 * a.z()},
                             r);

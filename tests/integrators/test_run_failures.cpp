@@ -53,9 +53,13 @@ TEST_SUITE("integrators/run failures") {
     CHECK(sim.u(x) == sim.state().u(x.index));
     failure_model bigger;
     const auto many = bigger.add_dofs(5, "y");
-    for (dof bad : {dof{-1}, dof{m.dof_count()}, many[4]}) {
+    // many[0] has index 1, a valid index here (x's): only its owner tells it apart.
+    REQUIRE(many[0].index == x.index);
+    for (dof bad : {dof{-1}, dof{m.dof_count()}, many[4], many[0]}) {
       CAPTURE(bad.index);
-      CHECK_THROWS_WITH_AS(sim.u(bad), doctest::Contains("is not a DOF of this model"), error);
+      const bool foreign = bad.owner != 0;
+      CHECK_THROWS_WITH_AS(sim.u(bad),
+                           doctest::Contains(foreign ? "belongs to another model" : "is not a DOF of this model"), error);
       CHECK_THROWS_AS(sim.v(bad), error);
       CHECK_THROWS_AS(sim.a(bad), error);
       CHECK_THROWS_AS(sim.residual(bad), error);
@@ -65,6 +69,28 @@ TEST_SUITE("integrators/run failures") {
         CHECK(e.code() == error_code::invalid_model);
       }
     }
+    // A copy of the model keeps its serial number: its DOFs stay valid there.
+    failure_model copy = m;
+    CHECK(copy.owns(x));
+    CHECK_FALSE(copy.owns(many[0]));
+  }
+
+  TEST_CASE("a DOF of another model is refused when elements are placed and scales are set") {
+    failure_model m, other;
+    const dof x = m.add_dof("x");
+    const dof y = other.add_dof("y");
+    REQUIRE(x.index == y.index);
+    try {
+      other.add<point_mass>("mass", {1.0}, x);
+      FAIL("must throw");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::invalid_model);
+      CHECK(std::string(e.what()).find("belongs to another model (connection 1)") != std::string::npos);
+    }
+    CHECK_THROWS_WITH_AS(other.set_scale(x, dof_scale{1.0, 1.0}), doctest::Contains("belongs to another model"), error);
+    CHECK_THROWS_WITH_AS((void)other.scale(x), doctest::Contains("belongs to another model"), error);
+    // A DOF made from a bare index is taken by any model (owner 0).
+    CHECK_NOTHROW(other.add<point_mass>("mass", {1.0}, dof{y.index}));
   }
 
   TEST_CASE("X0 on a DOF without mass or viscosity and V0 on a massless DOF are named in the log") {

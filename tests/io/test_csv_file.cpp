@@ -56,6 +56,30 @@ TEST_SUITE("io/csv file") {
     std::filesystem::remove_all(dir);
   }
 
+  TEST_CASE("a failed rename keeps the complete temporary file and names it") {
+    // The final name is taken by a non-empty directory: rename(2) cannot replace it.
+    const auto dir = scratch("rename");
+    const auto path = dir / "r.csv";
+    std::filesystem::create_directories(path / "occupied");
+    {
+      pradis::io::csv_file f(path.string(), {"x"});
+      const std::vector<double> row{2.5};
+      f.add_row(0.0, row);
+      f.add_row(1.0, row);
+      try {
+        f.commit();
+        FAIL("must throw");
+      } catch (const pradis::error& e) {
+        CHECK(e.code() == pradis::error_code::io_error);
+        const std::string w = e.message();
+        CHECK(w.rfind("cannot rename '" + f.temporary_path() + "' to '" + path.string() + "': ", 0) == 0);
+        CHECK(w.find("the rows are kept in '" + f.temporary_path() + "'") != std::string::npos);
+      }
+    }  // the destructor must not remove the kept file
+    CHECK(slurp(path.string() + ".part") == "t,x\n0,2.5\n1,2.5\n");
+    std::filesystem::remove_all(dir);
+  }
+
   TEST_CASE("without commit (an exception unwinding) the temporary file is removed") {
     const auto dir = scratch("abandon");
     const auto path = (dir / "r.csv").string();

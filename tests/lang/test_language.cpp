@@ -197,6 +197,31 @@ TEST_SUITE("lang/language") {
     CHECK(s->stages()[1].t0 == 1.0);
   }
 
+  TEST_CASE("rigid pendulum (LINKX): bottom at a quarter period with speed sqrt(2 g L) and rod force 3 m g") {
+    // examples/models/rigid_pendulum.prd: m = 2, L = 1.5, released from the
+    // horizontal; quarter period sqrt(L / g) K(1 / sqrt 2), K(1/sqrt 2) =
+    // 1.8540746773013719 (Abramowitz and Stegun, table 17.1).
+    auto s =
+        std::make_unique<lang::session>(lang::parse_file((lang_test::models_dir() / "rigid_pendulum.prd").string()));
+    s->run({.write_files = false});
+    const auto& t = s->results();
+    const std::size_t ux = column(t, "X displacement"), vx = column(t, "X velocity"), vy = column(t, "Y velocity");
+    const std::size_t len = column(t, "Rod length"), force = column(t, "Rod force");
+    const double l = 1.5, g = 9.81, quarter = std::sqrt(l / g) * 1.8540746773013719;
+    std::size_t r = 1;
+    while (r < t.rows() && l + t.at(r, ux) > 0) ++r;  // first output past the bottom (x = 0)
+    REQUIRE(r < t.rows());
+    // Linear interpolation of the crossing between outputs 1 ms apart.
+    const double x0 = l + t.at(r - 1, ux), x1 = l + t.at(r, ux);
+    const double tc = t.at(r - 1, 0) + (t.at(r, 0) - t.at(r - 1, 0)) * x0 / (x0 - x1);
+    CHECK(tc == doctest::Approx(quarter).epsilon(1e-5));
+    CHECK(std::hypot(t.at(r, vx), t.at(r, vy)) == doctest::Approx(std::sqrt(2 * g * l)).epsilon(1e-4));
+    CHECK(t.at(r, force) == doctest::Approx(3 * 2 * g).epsilon(1e-3));
+    double gap = 0;
+    for (std::size_t k = 0; k < t.rows(); ++k) gap = std::max(gap, std::abs(t.at(k, len) - l));
+    CHECK(gap < 1e-12);
+  }
+
   TEST_CASE("$REPLACE changes parameters for the following stages") {
     // Mass 2 on spring 100 with load 10, then load 30.
     std::string text = small_with("  Calc 'SHTERM (END=0.1, SMAX=1E-3)\n",

@@ -5,6 +5,7 @@
 // rows, and two displays cannot write the same file.
 
 #include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <string>
 
@@ -123,6 +124,30 @@ TEST_SUITE("lang/results files") {
     // A sensible OUT runs: 0.1 / 0.01 = 10 rows after the one at t = 0.
     auto s = lang_test::run(small_with("END=0.1, SMAX=1E-3", "END=0.1, SMAX=1E-3, OUT=0.01"));
     CHECK(s->results().rows() == 11);
+  }
+
+  TEST_CASE("with OUT = 0 (a row every step) the run stops at max_rows, keeping the rows written") {
+    // SMAX = 1e-3 and END = 0.1 with OUT = 0: 101 rows; the run stops at the 20th.
+    const auto dir = scratch_dir("max_rows");
+    auto s = lang_test::build(small_with("END=0.1, SMAX=1E-3", "END=0.1, SMAX=1E-3, OUT=0"));
+    try {
+      s->run({.output_dir = dir.string(), .stem = "m", .plot = false, .max_rows = 20});
+      FAIL("must throw");
+    } catch (const lang::lang_error& e) {
+      CHECK(std::string(e.what()).find("the run has produced 20 output rows, the most pradis writes") !=
+            std::string::npos);
+    }
+    CHECK(s->results().rows() == 20);
+    CHECK(lines(slurp(dir / "m.csv")) == 1 + 20);
+    std::filesystem::remove_all(dir);
+  }
+
+  TEST_CASE("run_settings::max_rows below 1 or not finite is refused") {
+    for (double bad : {0.0, -5.0, std::nan(""), HUGE_VAL}) {
+      auto s = lang_test::build(small_model);
+      CHECK_THROWS_WITH_AS(s->run({.write_files = false, .max_rows = bad}), doctest::Contains("max_rows"),
+                           pradis::error);
+    }
   }
 
   TEST_CASE("two displays that would write the same file are an error at the second") {

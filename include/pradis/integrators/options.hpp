@@ -8,6 +8,9 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
+
+#include "pradis/core/error.hpp"
 
 namespace pradis {
 
@@ -101,6 +104,24 @@ struct run_statistics {
     return a;
   }
 };
+
+/// A statistic by its output-variable name: "NSTEP" (accepted steps), "NITER"
+/// (iterations of the last step), "STEP" (last step size), "NREJ" (rejected
+/// steps), "NFACT" (factorisations), "NITTOT" (all Newton iterations),
+/// "NJAC" (evaluations with the Jacobian), "NEVAL" (all model evaluations).
+/// Throws invalid_option for another name.
+inline double statistic_by_name(const run_statistics& s, std::string_view key) {
+  if (key == "NSTEP") return static_cast<double>(s.steps);
+  if (key == "NITER") return s.last_iterations;
+  if (key == "STEP") return s.last_step;
+  if (key == "NREJ") return static_cast<double>(s.rejected_steps);
+  if (key == "NFACT") return static_cast<double>(s.factorizations);
+  if (key == "NITTOT") return static_cast<double>(s.newton_iterations);
+  if (key == "NJAC") return static_cast<double>(s.jacobian_evaluations);
+  if (key == "NEVAL") return static_cast<double>(s.evaluations);
+  throw error(error_code::invalid_option, "unknown statistic '" + std::string(key) +
+                                              "' (known: NSTEP, NITER, STEP, NREJ, NFACT, NITTOT, NJAC, NEVAL)");
+}
 
 namespace detail {
 inline std::string num(double x) {

@@ -40,6 +40,7 @@
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/newton.hpp"
 #include "pradis/integrators/options.hpp"
+#include "pradis/integrators/precision.hpp"
 #include "pradis/integrators/step_control.hpp"
 #include "pradis/linalg/ordering.hpp"
 #include "pradis/linalg/sparse_lu.hpp"
@@ -77,6 +78,7 @@ class simulation<model<Es...>, Scheme, Solver> {
     opt_ = opt;
     if (!(opt.end > t_)) fail_option("END = " + num(opt.end) + " must be after the current time " + num(t_));
     newton_.invalidate();  // every stage starts with a fresh Jacobian
+    precision_warned_ = false;
     if (!started_) {
       zero_step();
     } else {
@@ -133,10 +135,9 @@ class simulation<model<Es...>, Scheme, Solver> {
     }
     t_ = opt.end;
     if (controlled_steps >= 10 && steps_at_smax >= 0.9 * static_cast<double>(controlled_steps))
-      log_.write("warning: error control: " + std::to_string(steps_at_smax) + " of " +
-                 std::to_string(controlled_steps) + " steps were SMAX = " + num(opt.smax) +
-                 ": the local error stayed below DABSX = " + num(effective_dabsx(opt)) + " + DRLTX = " +
-                 num(opt.drltx) + " |v|, so SMAX, not the tolerance, set the accuracy of this stage");
+      log_.write(detail::smax_warning_text(steps_at_smax, controlled_steps, opt));
+    if (newton_.has_multipliers() && detail::undamped(scheme_))
+      log_.write(detail::undamped_constraint_note(scheme_label()));
     return stats_ - before;
   }
 
@@ -144,9 +145,8 @@ class simulation<model<Es...>, Scheme, Solver> {
   /// Current time.
   double time() const noexcept { return t_; }
   /// Displacement, velocity, acceleration of a DOF at the current time. Throw
-  /// invalid_model for a DOF outside the model (index out of range; a DOF of
-  /// another model with an index in range cannot be told apart) or before the
-  /// first stage.
+  /// invalid_model for a DOF outside the model (index out of range, or a DOF
+  /// handed out by another model) or before the first stage.
   double u(dof d) const { return s_.u(checked(d)); }
   double v(dof d) const { return s_.v(checked(d)); }
   double a(dof d) const { return s_.a(checked(d)); }
@@ -164,18 +164,7 @@ class simulation<model<Es...>, Scheme, Solver> {
   /// (iterations of the last step), "STEP" (last step size), "NREJ" (rejected
   /// steps), "NFACT" (factorisations), "NITTOT" (all Newton iterations),
   /// "NJAC" (evaluations with the Jacobian), "NEVAL" (all model evaluations).
-  double statistic(std::string_view key) const {
-    if (key == "NSTEP") return static_cast<double>(stats_.steps);
-    if (key == "NITER") return stats_.last_iterations;
-    if (key == "STEP") return stats_.last_step;
-    if (key == "NREJ") return static_cast<double>(stats_.rejected_steps);
-    if (key == "NFACT") return static_cast<double>(stats_.factorizations);
-    if (key == "NITTOT") return static_cast<double>(stats_.newton_iterations);
-    if (key == "NJAC") return static_cast<double>(stats_.jacobian_evaluations);
-    if (key == "NEVAL") return static_cast<double>(stats_.evaluations);
-    throw error(error_code::invalid_option, "unknown statistic '" + std::string(key) +
-                                                "' (known: NSTEP, NITER, STEP, NREJ, NFACT, NITTOT, NJAC, NEVAL)");
-  }
+  double statistic(std::string_view key) const { return statistic_by_name(stats_, key); }
   /// The model.
   model_type& get_model() noexcept { return m_; }
   const model_type& get_model() const noexcept { return m_; }
@@ -247,14 +236,15 @@ class simulation<model<Es...>, Scheme, Solver> {
  private:
   static std::string num(double x) { return detail::num(x); }
   Eigen::Index checked(dof d) const {
-    if (d.index < 0 || d.index >= s_.u.size()) bad_dof(d);
+    if (d.index < 0 || d.index >= s_.u.size() || !m_.owns(d)) bad_dof(d);
     return d.index;
   }
   [[noreturn]] void bad_dof(dof d) const {
     throw error(error_code::invalid_model,
                 "DOF index " + std::to_string(d.index) +
-                    (started_ ? " is not a DOF of this model (it has " + std::to_string(s_.u.size()) + " DOFs)"
-                              : " asked for before the first stage has run"),
+                    (!m_.owns(d) ? " belongs to another model than this simulation's"
+                     : started_  ? " is not a DOF of this model (it has " + std::to_string(s_.u.size()) + " DOFs)"
+                                 : " asked for before the first stage has run"),
                 {}, {}, d.index);
   }
   std::string_view scheme_label() const {
@@ -372,6 +362,14 @@ class simulation<model<Es...>, Scheme, Solver> {
   /// error control), commit. On failure or rejection the state is restored.
   step_outcome step(double h) {
     s0_ = s_;
+    const double shift = pseudo_acceleration_shift(scheme_, h, h_prev_);  // newmark.hpp
+    if (shift != 0) {
+      p_start_ = s_.p;  // restored if the step is not accepted
+      for (int i = 0; i < asm_.equations(); ++i) {
+        const auto d = asm_.dof_of(i);
+        s0_.p(d) += shift * (s0_.a(d) - a_prev_(d));
+      }
+    }
     const double t0 = t_;
     t_ = t0 + h;
     detail::apply_sources(m_, s_, t_);
@@ -388,6 +386,7 @@ class simulation<model<Es...>, Scheme, Solver> {
       check_finite(h);
       if (opt_.error_control && !error_accepts(h)) {
         s_ = s0_;
+        if (shift != 0) s_.p = p_start_;
         t_ = t0;
         return step_outcome::error_rejected;
       }
@@ -398,10 +397,16 @@ class simulation<model<Es...>, Scheme, Solver> {
       a_prev_ = s0_.a;
       h_prev_ = h;
       commit();
+      if (!precision_warned_)  // once per stage (precision.hpp)
+        if (auto l = detail::displacement_precision_loss(scheme_, asm_, s_, s0_, h, opt_, m_.scales())) {
+          log_.write(detail::precision_warning_text(*l, m_.dof_name(l->dof), t_, h));
+          precision_warned_ = true;
+        }
       return step_outcome::accepted;
     }
     last_failure_ = r.failure;
     s_ = s0_;
+    if (shift != 0) s_.p = p_start_;
     t_ = t0;
     return step_outcome::failed;
   }
@@ -463,6 +468,7 @@ class simulation<model<Es...>, Scheme, Solver> {
   newton_solver<Solver> newton_;
   assembler<model_type> asm_;
   diagnostics log_;
+  bool precision_warned_ = false;  // a loss-of-precision warning was written in this stage
   std::vector<observer> observers_;
   std::vector<observer> step_observers_;
   global_state s_, s0_;
@@ -476,6 +482,7 @@ class simulation<model<Es...>, Scheme, Solver> {
   double h_error_ = 0;
   double h_prev_ = 0;
   Eigen::VectorXd a_prev_;
+  Eigen::VectorXd p_start_;  // p at the step's start before pseudo_acceleration_shift
   double recommended_ = std::numeric_limits<double>::infinity();
   int successes_ = 0;
   bool started_ = false;

@@ -71,7 +71,9 @@ class csv_file {
   }
 
   /// Flushes and closes the file (both checked) and renames it to path().
-  /// Throws pradis::error (io_error), after removing the temporary file, on failure.
+  /// Throws pradis::error (io_error) on failure: after removing the temporary
+  /// file if writing or closing failed (it would be truncated); if only the
+  /// rename failed, the complete temporary file is kept and the message names it.
   void commit() {
     if (!f_) throw error(error_code::io_error, "'" + path_ + "' was already closed");
     flush();
@@ -81,7 +83,14 @@ class csv_file {
     f_ = nullptr;
     if (bad || closed != 0) fail("cannot write");
     errno = 0;
-    if (std::rename(temp_.c_str(), path_.c_str()) != 0) fail("cannot rename the temporary file to");
+    if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
+      // The rows are complete in the temporary file: keep it and say where it is.
+      const int e = errno;
+      committed_ = true;
+      throw error(error_code::io_error, "cannot rename '" + temp_ + "' to '" + path_ + "': " +
+                                            (e != 0 ? std::strerror(e) : "rename failed") + "; the rows are kept in '" +
+                                            temp_ + "'");
+    }
     committed_ = true;
   }
 

@@ -33,6 +33,11 @@ struct run_settings {
   /// to stop the run at the next step: run() then closes the results file with
   /// the rows computed so far and throws lang::interrupted. Null: never stops.
   const volatile std::sig_atomic_t* stop = nullptr;
+  /// Largest number of output rows of a run (all stages; at least 1): 10 million
+  /// rows of 10 outputs are 800 MB in memory and about 2 GB of CSV. A stage whose
+  /// OUT would exceed it is refused before it runs; with OUT = 0 (a row every step)
+  /// the run stops with an error when it is reached, keeping the rows written.
+  double max_rows = 1e7;
 };
 
 /// A plot that a 'DISP asked for: the application draws it (the library does

@@ -37,9 +37,6 @@ class session : public action_checker {
   using sim_type = simulation<library_model, stage_scheme, linalg::sparse_lu<linalg::optim_ordering>>;
   /// Largest number of checkpoints the SAVE key of one stage may write.
   static constexpr double max_checkpoints = 10000;
-  /// Largest number of output rows of a run (all stages): 10 million rows of
-  /// 10 outputs are 800 MB in memory and about 2 GB of CSV.
-  static constexpr double max_rows = 1e7;
 
   /// Builds the model and checks outputs and actions. Throws lang_error.
   explicit session(ast::program prog) : action_checker(std::move(prog)) {
@@ -65,6 +62,9 @@ class session : public action_checker {
   void run(const run_settings& s = {}) {
     settings_ = s;
     progress_ = settings_.progress ? std::make_unique<io::progress_line>(*settings_.progress) : nullptr;
+    if (!(settings_.max_rows >= 1) || !std::isfinite(settings_.max_rows))
+      throw pradis::error(error_code::invalid_option,
+                          "run_settings::max_rows = " + num(settings_.max_rows) + " must be a finite number >= 1");
     if (settings_.write_files) open_results();
     try {
       run_actions();
@@ -173,9 +173,9 @@ class session : public action_checker {
           break;
       }
     }
-    if (static_cast<double>(results_.rows()) >= max_rows)
+    if (static_cast<double>(results_.rows()) >= settings_.max_rows)
       throw pradis::error(error_code::invalid_option,
-                          "the run has produced " + num(max_rows) + " output rows, the most pradis writes: make OUT "
+                          "the run has produced " + num(settings_.max_rows) + " output rows, the most pradis writes: make OUT "
                           "larger (or SMAX, with OUT = 0: a row every step)");
     results_.add_row(s.time(), row);
     if (csv_) csv_->add_row(s.time(), row);
@@ -279,10 +279,10 @@ class session : public action_checker {
     if (started_ && !(st.opt.end > t0))
       fail(c.args_loc, "END = " + num(st.opt.end) + " must be after the current time " + num(t0));
     if (st.save > 0) check_save(st, t0);
-    if (st.opt.out > 0 && static_cast<double>(results_.rows()) + (st.opt.end - t0) / st.opt.out > max_rows)
+    if (st.opt.out > 0 && static_cast<double>(results_.rows()) + (st.opt.end - t0) / st.opt.out > settings_.max_rows)
       fail(st.out_loc, "OUT = " + num(st.opt.out) + " would write " + num(std::floor((st.opt.end - t0) / st.opt.out)) +
                            " output rows in this stage (from t = " + num(t0) + " to END = " + num(st.opt.end) +
-                           "); at most " + num(max_rows) + " rows are written in a run: make OUT larger");
+                           "); at most " + num(settings_.max_rows) + " rows are written in a run: make OUT larger");
     stage_report r{c.label, c.program, t0, st.opt.end, {}};
     const run_statistics before = sim_->statistics();
     struct progress_guard {

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <cstdint>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -27,10 +29,25 @@
 namespace pradis {
 
 /// A degree of freedom (node) of a model. DOF 0 is the ground: fixed at zero.
+/// A DOF handed out by a model carries that model's serial number, so that the
+/// model and its simulation refuse a DOF of another model (code 110 or 120); a
+/// DOF made from a bare index (`dof{3}`) has owner 0 and is taken by any model.
+/// Two DOFs compare equal when their indices do.
 struct dof {
   int index = 0;
-  friend constexpr bool operator==(dof, dof) = default;
+  std::uint32_t owner = 0;  ///< serial number of the model that made it (0: none)
+  friend constexpr bool operator==(dof a, dof b) noexcept { return a.index == b.index; }
 };
+
+namespace detail {
+/// A new serial number for a model (never 0).
+inline std::uint32_t next_model_serial() noexcept {
+  static std::atomic<std::uint32_t> n{0};
+  std::uint32_t s = ++n;
+  if (s == 0) s = ++n;  // after wrap-around
+  return s;
+}
+}  // namespace detail
 
 /// A spatial rotational node (PRADIS's four rotational potentials of a point in
 /// spatial motion): the non-normalised quaternion q = (q1, q2, q3, q4). q1, q2, q3
@@ -104,6 +121,10 @@ class model {
 
   /// The ground DOF (index 0), fixed at zero displacement.
   static constexpr dof ground() noexcept { return dof{0}; }
+  /// This model's serial number (carried by the DOFs it hands out; a copy keeps it).
+  std::uint32_t serial() const noexcept { return serial_; }
+  /// Whether d may be used with this model: made by it (or a copy) or from a bare index.
+  bool owns(dof d) const noexcept { return d.owner == 0 || d.owner == serial_; }
 
   /// Adds a DOF; the name is used in messages and outputs (default "dof N"). The
   /// domain sets its nominal magnitudes (default_scale); an unspecified DOF takes the
@@ -115,7 +136,7 @@ class model {
     dof_scales_.push_back(default_scale(dom));
     scale_fixed_.push_back(0);
     domain_by_.emplace_back();
-    return dof{i};
+    return dof{i, serial_};
   }
   /// Adds `count` DOFs and returns them.
   std::vector<dof> add_dofs(int count, const std::string& prefix = {}) {
@@ -158,6 +179,7 @@ class model {
   /// q4. A component given as the ground is fixed (PRADIS: connecting an angular DOF to
   /// node 0). A DOF that already belongs to a rotational node is code 110.
   rotation_node add_rotation_node(std::string name, dof q1, dof q2, dof q3) {
+    for (const dof d : {q1, q2, q3}) checked_dof(d, "add_rotation_node");
     const std::array<int, 3> t{q1.index, q2.index, q3.index};
     check_rotation_triple(t, "", name);
     if (name.empty()) name = "rotation node " + std::to_string(rotation_nodes_.size() + 1);
@@ -179,7 +201,8 @@ class model {
   /// Handle of rotational node i.
   rotation_node rotation_node_handle(int i) const {
     const auto& r = rotation_nodes_.at(static_cast<std::size_t>(i));
-    return rotation_node{dof{r.dofs[0]}, dof{r.dofs[1]}, dof{r.dofs[2]}, dof{r.dofs[3]}, i};
+    return rotation_node{dof{r.dofs[0], serial_}, dof{r.dofs[1], serial_}, dof{r.dofs[2], serial_},
+                         dof{r.dofs[3], serial_}, i};
   }
   /// The rotational node whose external DOF q1, q2 or q3 is `d` (not the ground), if any.
   std::optional<rotation_node> find_rotation_node(dof d) const {
@@ -306,7 +329,7 @@ class model {
   /// The global DOF of local DOF k (external first, then internal) of an instance.
   template <class E>
   dof dof_of(element_ref<E> r, int k) const {
-    return dof{instance(r).dofs.at(static_cast<std::size_t>(k))};
+    return dof{instance(r).dofs.at(static_cast<std::size_t>(k)), serial_};
   }
 
   /// Finds an instance by name.
@@ -365,9 +388,10 @@ class model {
                   name);
     element_instance<E> in{std::move(e), name, {}, npar, 0, 0, 0, 0};
     for (std::size_t k = 0; k < d.size(); ++k) {
-      if (d[k].index < 0 || d[k].index >= dof_count())
+      if (d[k].index < 0 || d[k].index >= dof_count() || !owns(d[k]))
         throw error(error_code::invalid_model,
-                    "DOF " + std::to_string(d[k].index) + " does not exist in this model (connection " +
+                    "DOF " + std::to_string(d[k].index) +
+                        (owns(d[k]) ? " does not exist in this model" : " belongs to another model") + " (connection " +
                         std::to_string(k + 1) + ")",
                     std::string(p.name), name);
       in.dofs[k] = d[k].index;
@@ -410,9 +434,9 @@ class model {
   }
 
   std::size_t checked_dof(dof d, const char* what) const {
-    if (d.index < 0 || d.index >= dof_count())
-      throw error(error_code::invalid_model,
-                  std::string(what) + ": DOF " + std::to_string(d.index) + " does not exist in this model");
+    if (d.index < 0 || d.index >= dof_count() || !owns(d))
+      throw error(error_code::invalid_model, std::string(what) + ": DOF " + std::to_string(d.index) +
+                                                 (owns(d) ? " does not exist in this model" : " belongs to another model"));
     return static_cast<std::size_t>(d.index);
   }
   /// A DOF of one domain connected to an element slot of another is code 110.
@@ -510,6 +534,7 @@ class model {
   std::unordered_map<std::string, instance_location> by_name_;
   std::vector<double> work_, old_state_, new_state_;
   std::size_t version_ = 0;
+  std::uint32_t serial_ = detail::next_model_serial();
 };
 
 /// A model over the types of a type_list: model_of<type_list<A, B>> is model<A, B>.

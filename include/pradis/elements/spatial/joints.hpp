@@ -32,6 +32,15 @@
     "11 - y of B, body b frame [m]\n" \
     "12 - z of B, body b frame [m]\n"
 
+/// The parameter lines 13..18 (the hinge axes) of the help texts of REV3 and REV3X.
+#define PRADIS_HINGE_AXES_HELP \
+    "13 - x of the hinge axis e_a, body a frame (normalised; any non-zero length) [-]\n" \
+    "14 - y of e_a [-]\n" \
+    "15 - z of e_a [-]\n" \
+    "16 - x of the hinge axis e_b, body b frame (normalised; any non-zero length) [-]\n" \
+    "17 - y of e_b [-]\n" \
+    "18 - z of e_b [-]\n"
+
 namespace pradis::elements {
 
 namespace detail {
@@ -69,6 +78,11 @@ inline constexpr std::string_view joint_dof_help =
     "10 - rotation potential q1 of body b's rotational node [-]\n"
     "11 - q2 of body b [-]\n"
     "12 - q3 of body b [-] (connect DOFs 1-6 or 7-12 to the ground for a joint to the ground)";
+/// The parameter lines 1..12 (the joint geometry) alone, for joints without further
+/// parameters (SPH3X).
+inline constexpr std::string_view joint_geometry_help = PRADIS_JOINT_GEOMETRY_HELP;
+/// The parameter lines 1..18 (joint geometry and hinge axes) alone, for REV3X.
+inline constexpr std::string_view exact_hinge_parameter_help = PRADIS_JOINT_GEOMETRY_HELP PRADIS_HINGE_AXES_HELP;
 /// The parameter lines of the help text of SPH3.
 inline constexpr std::string_view spherical_joint_parameter_help =
     PRADIS_JOINT_GEOMETRY_HELP
@@ -87,6 +101,18 @@ std::pair<attached_point, attached_point> point_coupling(const joint_geometry& g
   f = k * d + c * (ab.second.v - ab.first.v);
   two_point_flows(ab.first, ab.second, f, k * spatial::mat3::Identity(), c * spatial::mat3::Identity(), out);
   return ab;
+}
+/// v / |v| for a finite non-zero v, else v unchanged (new_integration reports it).
+inline spatial::vec3 unit_axis(const spatial::vec3& v) {
+  const double n = v.norm();
+  return n > 0 && std::isfinite(n) ? spatial::vec3(v / n) : v;
+}
+/// Code 100 unless the hinge axis (x, y, z) is finite and non-zero.
+inline void check_hinge_axis(element_context& ctx, const char* which, double x, double y, double z) {
+  const double n = std::sqrt(x * x + y * y + z * z);
+  if (!(n > 0) || !std::isfinite(n))
+    ctx.invalid_parameter(std::string("hinge axis ") + which + " = (" + to_text(x) + ", " + to_text(y) + ", " +
+                          to_text(z) + ") must be finite and non-zero (zero hinge axis or not finite)");
 }
 }  // namespace detail
 
@@ -180,12 +206,7 @@ struct revolute_joint {
       .field = "mechanics, spatial motion",
       .dofs = detail::joint_dof_help,
       .parameters = PRADIS_JOINT_GEOMETRY_HELP
-                    "13 - x of the hinge axis e_a, body a frame (normalised; any non-zero length) [-]\n"
-                    "14 - y of e_a [-]\n"
-                    "15 - z of e_a [-]\n"
-                    "16 - x of the hinge axis e_b, body b frame (normalised; any non-zero length) [-]\n"
-                    "17 - y of e_b [-]\n"
-                    "18 - z of e_b [-]\n"
+                    PRADIS_HINGE_AXES_HELP
                     "19 - penalty stiffness k on the gap p_B - p_A [N/m] (> 0)\n"
                     "20 - penalty damping c on the gap rate [N s/m] (>= 0)\n"
                     "21 - rotational penalty stiffness kr on the misalignment u_A x u_B [N m/rad] (> 0)\n"
@@ -219,7 +240,7 @@ struct revolute_joint {
   spatial::vec3 eb;  ///< unit hinge axis in body b's frame
 
   explicit revolute_joint(parameters q)
-      : p(q), ea(unit(spatial::vec3(q.eax, q.eay, q.eaz))), eb(unit(spatial::vec3(q.ebx, q.eby, q.ebz))) {}
+      : p(q), ea(detail::unit_axis(spatial::vec3(q.eax, q.eay, q.eaz))), eb(detail::unit_axis(spatial::vec3(q.ebx, q.eby, q.ebz))) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() {
     return {{0.1, -0.2, 0.3, 0.2, 0.1, -0.15, 1.2, 0.4, -0.5, -0.1, 0.25, 0.2}, 0.3, -0.5, 0.8, -0.2, 0.7, 0.4,
@@ -232,8 +253,8 @@ struct revolute_joint {
   /// NEWINT: parameter checks (code 100).
   void new_integration(element_context& ctx) const {
     if (!p.geo.finite()) ctx.invalid_parameter("positions and offsets must be finite");
-    check_axis(ctx, "e_a", p.eax, p.eay, p.eaz);
-    check_axis(ctx, "e_b", p.ebx, p.eby, p.ebz);
+    detail::check_hinge_axis(ctx, "e_a", p.eax, p.eay, p.eaz);
+    detail::check_hinge_axis(ctx, "e_b", p.ebx, p.eby, p.ebz);
     if (!(p.k > 0) || !std::isfinite(p.k)) ctx.invalid_parameter("stiffness k = " + to_text(p.k) + " must be finite and > 0 (k <= 0)");
     if (!(p.c >= 0) || !std::isfinite(p.c)) ctx.invalid_parameter("damping c = " + to_text(p.c) + " must be finite and >= 0 (c < 0)");
     if (!(p.kr > 0) || !std::isfinite(p.kr))
@@ -278,21 +299,9 @@ struct revolute_joint {
   /// States the checks may use: both quaternion norms are not near zero.
   bool admissible(const local_input<revolute_joint>& in) const { return detail::two_quaternions_admissible(in); }
 
- private:
-  /// v / |v| for a finite non-zero v, else v unchanged (new_integration reports it).
-  static spatial::vec3 unit(const spatial::vec3& v) {
-    const double n = v.norm();
-    return n > 0 && std::isfinite(n) ? spatial::vec3(v / n) : v;
-  }
-  /// Code 100 unless the hinge axis (x, y, z) is finite and non-zero.
-  static void check_axis(element_context& ctx, const char* which, double x, double y, double z) {
-    const double n = std::sqrt(x * x + y * y + z * z);
-    if (!(n > 0) || !std::isfinite(n))
-      ctx.invalid_parameter(std::string("hinge axis ") + which + " = (" + to_text(x) + ", " + to_text(y) + ", " +
-                            to_text(z) + ") must be finite and non-zero (zero hinge axis or not finite)");
-  }
 };
 
 }  // namespace pradis::elements
 
 #undef PRADIS_JOINT_GEOMETRY_HELP
+#undef PRADIS_HINGE_AXES_HELP
