@@ -109,8 +109,9 @@ struct run_statistics {
 /// (iterations of the last step), "STEP" (last step size), "NREJ" (rejected
 /// steps), "NFACT" (factorisations), "NITTOT" (all Newton iterations),
 /// "NJAC" (evaluations with the Jacobian), "NEVAL" (all model evaluations).
-/// Throws invalid_option for another name.
-inline double statistic_by_name(const run_statistics& s, std::string_view key) {
+/// Throws invalid_option for another name (`more`: further names the caller
+/// knows, for the message).
+inline double statistic_by_name(const run_statistics& s, std::string_view key, std::string_view more = {}) {
   if (key == "NSTEP") return static_cast<double>(s.steps);
   if (key == "NITER") return s.last_iterations;
   if (key == "STEP") return s.last_step;
@@ -120,7 +121,8 @@ inline double statistic_by_name(const run_statistics& s, std::string_view key) {
   if (key == "NJAC") return static_cast<double>(s.jacobian_evaluations);
   if (key == "NEVAL") return static_cast<double>(s.evaluations);
   throw error(error_code::invalid_option, "unknown statistic '" + std::string(key) +
-                                              "' (known: NSTEP, NITER, STEP, NREJ, NFACT, NITTOT, NJAC, NEVAL)");
+                                              "' (known: NSTEP, NITER, STEP, NREJ, NFACT, NITTOT, NJAC, NEVAL" +
+                                              (more.empty() ? std::string() : ", " + std::string(more)) + ")");
 }
 
 namespace detail {

@@ -15,7 +15,8 @@
 /// LinearSolver), newmark.hpp (the alpha family), newton.hpp (full and
 /// modified Newton), step_control.hpp (error test, step rules),
 /// initialisation.hpp (zero step), checkpoint.hpp (the checkpoint format),
-/// failures.hpp (the messages of run failures).
+/// failures.hpp (the messages of run failures), driver_core.hpp (the state and
+/// element-level phases shared with bdf_simulation).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -35,6 +36,7 @@
 #include "pradis/core/element.hpp"
 #include "pradis/integrators/checkpoint.hpp"
 #include "pradis/integrators/concepts.hpp"
+#include "pradis/integrators/driver_core.hpp"
 #include "pradis/integrators/failures.hpp"
 #include "pradis/integrators/initialisation.hpp"
 #include "pradis/integrators/newmark.hpp"
@@ -53,13 +55,19 @@ class simulation;
 
 /// Simulation of a model<Es...> with an integration scheme and a linear solver policy.
 template <class... Es, Integrator Scheme, LinearSolver Solver>
-class simulation<model<Es...>, Scheme, Solver> {
+class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<model<Es...>> {
+  using core = detail::driver_core<model<Es...>>;
+  using core::asm_, core::log_, core::m_, core::opt_, core::prescribed_, core::recommended_, core::rhs_, core::s0_,
+      core::s_, core::started_, core::stats_, core::t_, core::last_failure_;
+  using core::bad_dof, core::checked, core::commit, core::context_for, core::evaluate, core::for_each_instance,
+      core::new_integration, core::raise;
+
  public:
   using model_type = model<Es...>;
   using observer = std::function<void(const simulation&)>;
 
   /// Binds the simulation to a model (which must outlive it).
-  explicit simulation(model_type& m, Scheme scheme = {}) : m_(m), scheme_(scheme) {}
+  explicit simulation(model_type& m, Scheme scheme = {}) : core(m), scheme_(scheme) {}
 
   /// The diagnostics log (SYSPRINT.TXT role); silent by default.
   diagnostics& log() noexcept { return log_; }
@@ -235,18 +243,7 @@ class simulation<model<Es...>, Scheme, Solver> {
 
  private:
   static std::string num(double x) { return detail::num(x); }
-  Eigen::Index checked(dof d) const {
-    if (d.index < 0 || d.index >= s_.u.size() || !m_.owns(d)) bad_dof(d);
-    return d.index;
-  }
-  [[noreturn]] void bad_dof(dof d) const {
-    throw error(error_code::invalid_model,
-                "DOF index " + std::to_string(d.index) +
-                    (!m_.owns(d) ? " belongs to another model than this simulation's"
-                     : started_  ? " is not a DOF of this model (it has " + std::to_string(s_.u.size()) + " DOFs)"
-                                 : " asked for before the first stage has run"),
-                {}, {}, d.index);
-  }
+
   std::string_view scheme_label() const {
     if constexpr (requires { scheme_.label(); })
       return scheme_.label();
@@ -257,80 +254,17 @@ class simulation<model<Es...>, Scheme, Solver> {
     raise(error(error_code::invalid_option, std::string(scheme_label()) + ": " + msg));
   }
 
-  // ---- element-level phases ---------------------------------------------------
-  template <class F>
-  void for_each_instance(F&& f) {
-    m_.for_each_instances([&](auto& vec) {
-      for (auto& in : vec) f(in);
-    });
-  }
-  element_context context_for(auto& in) {
-    using E = std::remove_cvref_t<decltype(in.element)>;
-    element_context ctx(E::passport.name, in.name, &log_);
-    assembler<model_type>::bind(m_, in, ctx);
-    ctx.time = t_;
-    ctx.nstep = stats_.steps;
-    return ctx;
-  }
-
-  void new_integration() {
-    for_each_instance([&](auto& in) {
-      using E = std::remove_cvref_t<decltype(in.element)>;
-      if constexpr (HasNewIntegration<E>) {
-        element_context ctx = context_for(in);
-        ctx.newint = true;
-        in.element.new_integration(ctx);
-      }
-    });
-    recommended_ = std::numeric_limits<double>::infinity();
-  }
-
   void zero_step() {
-    const int nd = m_.dof_count();
-    s_.resize(nd);
-    // The hidden q4 of every rotational node starts at 1 (identity orientation);
-    // initial-rotation elements (ROT0) may set it otherwise below.
-    for (const auto& node : m_.rotation_nodes()) s_.u(node.dofs[3]) = 1.0;
-    const std::vector<std::string> driver = detail::detect_sources(m_, prescribed_, log_);
-    new_integration();
-    const auto [set_u, set_v] =
-        detail::apply_initial_conditions(m_, s_, prescribed_, driver, [&](auto& in) { return context_for(in); });
-    detail::apply_sources(m_, s_, t_);
-    build();
-    started_ = true;
-    const std::vector<char> kind =
-        detail::initial_derivatives(m_, asm_, newton_.linear_solver(), s_, rhs_, stats_, log_,
-                                    [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
-    detail::warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);
+    this->start_zero_step(newton_.linear_solver(), [&] { build(); });
     newton_.invalidate();  // the solver holds the factorisation of the initial-derivative matrix
-    s_.p = s_.a;  // the pseudo-acceleration starts at the consistent acceleration
     a_prev_ = s_.a;
     h_prev_ = 0;
-    // Flows and work vectors at t0 (no Jacobian needed), then accept the zero step.
-    evaluate({0, 0, 0}, 0.0, false);
-    recommended_ = asm_.recommended_step();
-    commit();
+    this->finish_zero_step();
     notify();
   }
 
   void build() {
-    if (prescribed_.size() != static_cast<std::size_t>(m_.dof_count())) {
-      // DOFs were added after the zero step (internal or new): they start at rest.
-      const auto old = static_cast<Eigen::Index>(prescribed_.size());
-      prescribed_.resize(static_cast<std::size_t>(m_.dof_count()), 0);
-      global_state g;
-      g.resize(m_.dof_count());
-      g.u.head(old) = s_.u;
-      g.v.head(old) = s_.v;
-      g.a.head(old) = s_.a;
-      g.p.head(old) = s_.p;
-      for (const auto& node : m_.rotation_nodes())
-        if (node.dofs[3] >= old) g.u(node.dofs[3]) = 1.0;  // a new rotational node starts at the identity
-      s_ = g;
-    }
-    asm_.build(m_, prescribed_);
-    rhs_.resize(static_cast<std::size_t>(asm_.equations()));
-    s0_ = s_;
+    this->rebuild_equations();
     newton_.invalidate();
     analyze();
   }
@@ -344,19 +278,6 @@ class simulation<model<Es...>, Scheme, Solver> {
 
   /// Names the DOF of a singular equation and the elements on it.
   [[noreturn]] void rethrow_singular(const error& e) { raise(detail::singular_error(m_, asm_, e, t_)); }
-  [[noreturn]] void raise(const error& e) {
-    log_.write(e);
-    throw e;
-  }
-
-  /// Evaluates the model. During step k (1-based) elements see NSTEP = k; at
-  /// the zero step and between steps they see the number of accepted steps.
-  void evaluate(const jacobian_coefficients& c, double h, bool jac, int niter = 0, bool in_step = false) {
-    call_info info{t_, h, stats_.steps + (in_step ? 1 : 0), niter, jac, &log_, opt_.newton.dabsi};
-    ++stats_.evaluations;
-    if (jac) ++stats_.jacobian_evaluations;
-    asm_.evaluate(m_, s_, c, info);
-  }
 
   /// One step from t_ to t_ + h: predictor, Newton, local error test (with
   /// error control), commit. On failure or rejection the state is restored.
@@ -443,49 +364,21 @@ class simulation<model<Es...>, Scheme, Solver> {
     raise(detail::smin_error(m_, asm_, last_failure_, opt_.smin, t_, h));
   }
 
-  /// Accepts the step: NEW state to OLD, element commit hooks, source reactions.
-  void commit() {
-    m_.old_state_pool() = m_.new_state_pool();
-    for_each_instance([&](auto& in) {
-      using E = std::remove_cvref_t<decltype(in.element)>;
-      if constexpr (requires(E& e, element_context& c) { e.commit(c); }) {
-        element_context ctx = context_for(in);
-        in.element.commit(ctx);
-      }
-      if constexpr (PrescribesMotion<E>) {
-        // W(1) of a source: the force it applies to its DOF (the reaction).
-        if (in.work_size > 0) m_.work_pool()[in.work_offset] = asm_.residual()(in.dofs[0]);
-      }
-    });
-  }
-
   void notify() {
     for (auto& f : observers_) f(*this);
   }
 
-  model_type& m_;
   Scheme scheme_;
   newton_solver<Solver> newton_;
-  assembler<model_type> asm_;
-  diagnostics log_;
   bool precision_warned_ = false;  // a loss-of-precision warning was written in this stage
   std::vector<observer> observers_;
   std::vector<observer> step_observers_;
-  global_state s_, s0_;
-  std::vector<char> prescribed_;
-  std::vector<double> rhs_;
-  run_options opt_{};
-  run_statistics stats_{};
-  std::optional<error> last_failure_;
-  double t_ = 0;
   double h_nominal_ = 0;
   double h_error_ = 0;
   double h_prev_ = 0;
   Eigen::VectorXd a_prev_;
   Eigen::VectorXd p_start_;  // p at the step's start before pseudo_acceleration_shift
-  double recommended_ = std::numeric_limits<double>::infinity();
   int successes_ = 0;
-  bool started_ = false;
 };
 
 /// Deduction guides: `simulation sim(model, newmark{})`.

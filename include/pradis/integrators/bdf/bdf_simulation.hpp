@@ -50,6 +50,7 @@
 #include "pradis/integrators/bdf/history.hpp"
 #include "pradis/integrators/bdf/options.hpp"
 #include "pradis/integrators/concepts.hpp"
+#include "pradis/integrators/driver_core.hpp"
 #include "pradis/integrators/failures.hpp"
 #include "pradis/integrators/initialisation.hpp"
 #include "pradis/integrators/options.hpp"
@@ -69,7 +70,13 @@ class bdf_simulation;
 ///     sim.on_output([&](const auto& s) { ... s.time(), s.u(d) ... });
 ///     sim.run({.end = 1.0, .smax = 0.1, .error_control = true, .drltx = 1e-6});
 template <class... Es, LinearSolver Solver>
-class bdf_simulation<model<Es...>, Solver> {
+class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<Es...>> {
+  using core = detail::driver_core<model<Es...>>;
+  using core::asm_, core::log_, core::m_, core::opt_, core::prescribed_, core::recommended_, core::rhs_, core::s0_,
+      core::s_, core::started_, core::stats_, core::t_, core::last_failure_;
+  using core::bad_dof, core::checked, core::commit, core::context_for, core::evaluate, core::for_each_instance,
+      core::new_integration, core::raise;
+
  public:
   using model_type = model<Es...>;
   using observer = std::function<void(const bdf_simulation&)>;
@@ -78,7 +85,7 @@ class bdf_simulation<model<Es...>, Solver> {
 
   /// Binds the simulation to a model (which must outlive it). Throws
   /// invalid_option for bad options (check_bdf_options).
-  explicit bdf_simulation(model_type& m, bdf_options o = {}) : m_(m), bopt_(o) {
+  explicit bdf_simulation(model_type& m, bdf_options o = {}) : core(m), bopt_(o) {
     if (auto msg = check_bdf_options(o)) throw error(error_code::invalid_option, "BDF: " + *msg);
   }
 
@@ -169,17 +176,8 @@ class bdf_simulation<model<Es...>, Solver> {
   /// "NITER", "STEP", "NREJ", "NFACT", "NITTOT", "NJAC", "NEVAL") and "ORDER",
   /// the order of the next step.
   double statistic(std::string_view key) const {
-    if (key == "NSTEP") return static_cast<double>(stats_.steps);
-    if (key == "NITER") return stats_.last_iterations;
-    if (key == "STEP") return stats_.last_step;
-    if (key == "NREJ") return static_cast<double>(stats_.rejected_steps);
-    if (key == "NFACT") return static_cast<double>(stats_.factorizations);
-    if (key == "NITTOT") return static_cast<double>(stats_.newton_iterations);
-    if (key == "NJAC") return static_cast<double>(stats_.jacobian_evaluations);
-    if (key == "NEVAL") return static_cast<double>(stats_.evaluations);
     if (key == "ORDER") return hist_.order();
-    throw error(error_code::invalid_option, "unknown statistic '" + std::string(key) +
-                                                "' (known: NSTEP, NITER, STEP, NREJ, NFACT, NITTOT, NJAC, NEVAL, ORDER)");
+    return statistic_by_name(stats_, key, "ORDER");
   }
   /// The BDF options.
   const bdf_options& options() const noexcept { return bopt_; }
@@ -194,116 +192,27 @@ class bdf_simulation<model<Es...>, Solver> {
 
  private:
   static std::string num(double x) { return detail::num(x); }
-  Eigen::Index checked(dof d) const {
-    if (d.index < 0 || d.index >= s_.u.size()) bad_dof(d);
-    return d.index;
-  }
-  [[noreturn]] void bad_dof(dof d) const {
-    throw error(error_code::invalid_model,
-                "DOF index " + std::to_string(d.index) +
-                    (started_ ? " is not a DOF of this model (it has " + std::to_string(s_.u.size()) + " DOFs)"
-                              : " asked for before the first stage has run"),
-                {}, {}, d.index);
-  }
-  [[noreturn]] void fail_option(const std::string& msg) { raise(error(error_code::invalid_option, "BDF: " + msg)); }
-  [[noreturn]] void raise(const error& e) {
-    log_.write(e);
-    throw e;
-  }
 
-  // ---- element-level phases (as in pradis::simulation) ------------------------
-  template <class F>
-  void for_each_instance(F&& f) {
-    m_.for_each_instances([&](auto& vec) {
-      for (auto& in : vec) f(in);
-    });
-  }
-  element_context context_for(auto& in) {
-    using E = std::remove_cvref_t<decltype(in.element)>;
-    element_context ctx(E::passport.name, in.name, &log_);
-    assembler<model_type>::bind(m_, in, ctx);
-    ctx.time = t_;
-    ctx.nstep = stats_.steps;
-    return ctx;
-  }
-  void new_integration() {
-    for_each_instance([&](auto& in) {
-      using E = std::remove_cvref_t<decltype(in.element)>;
-      if constexpr (HasNewIntegration<E>) {
-        element_context ctx = context_for(in);
-        ctx.newint = true;
-        in.element.new_integration(ctx);
-      }
-    });
-    recommended_ = std::numeric_limits<double>::infinity();
-  }
+  [[noreturn]] void fail_option(const std::string& msg) { raise(error(error_code::invalid_option, "BDF: " + msg)); }
+
+  // ---- element-level phases (driver_core.hpp, shared with pradis::simulation) ---
   /// The zero step: prescribed DOFs, initial conditions, consistent initial
   /// derivatives (initialisation.hpp), flows at t0.
   void zero_step() {
-    s_.resize(m_.dof_count());
-    for (const auto& node : m_.rotation_nodes()) s_.u(node.dofs[3]) = 1.0;
-    const std::vector<std::string> driver = detail::detect_sources(m_, prescribed_, log_);
-    new_integration();
-    const auto [set_u, set_v] =
-        detail::apply_initial_conditions(m_, s_, prescribed_, driver, [&](auto& in) { return context_for(in); });
-    detail::apply_sources(m_, s_, t_);
-    build();
-    started_ = true;
-    const std::vector<char> kind =
-        detail::initial_derivatives(m_, asm_, solver_, s_, rhs_, stats_, log_,
-                                    [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
-    detail::warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);
+    this->start_zero_step(solver_, [&] { build(); });
     jac_valid_ = false;  // the solver holds the factorisation of the initial-derivative matrix
-    s_.p = s_.a;
-    evaluate({0, 0, 0}, 0.0, false);
-    recommended_ = asm_.recommended_step();
-    commit();
+    this->finish_zero_step();
     notify();
   }
-  /// (Re)builds the equations and the pattern; DOFs added since start at rest.
+  /// (Re)builds the equations and analyses the pattern.
   void build() {
-    if (prescribed_.size() != static_cast<std::size_t>(m_.dof_count())) {
-      const auto old = static_cast<Eigen::Index>(prescribed_.size());
-      prescribed_.resize(static_cast<std::size_t>(m_.dof_count()), 0);
-      global_state g;
-      g.resize(m_.dof_count());
-      g.u.head(old) = s_.u;
-      g.v.head(old) = s_.v;
-      g.a.head(old) = s_.a;
-      g.p.head(old) = s_.p;
-      for (const auto& node : m_.rotation_nodes())
-        if (node.dofs[3] >= old) g.u(node.dofs[3]) = 1.0;
-      s_ = g;
-    }
-    asm_.build(m_, prescribed_);
-    rhs_.resize(static_cast<std::size_t>(asm_.equations()));
-    s0_ = s_;
+    this->rebuild_equations();
     jac_valid_ = false;
     try {
       solver_.analyze(asm_.pattern());
     } catch (const error& e) {
       raise(detail::singular_error(m_, asm_, e, t_));
     }
-  }
-  void evaluate(const jacobian_coefficients& c, double h, bool jac, int niter = 0, bool in_step = false) {
-    call_info info{t_, h, stats_.steps + (in_step ? 1 : 0), niter, jac, &log_, opt_.newton.dabsi};
-    ++stats_.evaluations;
-    if (jac) ++stats_.jacobian_evaluations;
-    asm_.evaluate(m_, s_, c, info);
-  }
-  /// Accepts the state: NEW state to OLD, element commit hooks, source reactions.
-  void commit() {
-    m_.old_state_pool() = m_.new_state_pool();
-    for_each_instance([&](auto& in) {
-      using E = std::remove_cvref_t<decltype(in.element)>;
-      if constexpr (requires(E& e, element_context& c) { e.commit(c); }) {
-        element_context ctx = context_for(in);
-        in.element.commit(ctx);
-      }
-      if constexpr (PrescribesMotion<E>) {
-        if (in.work_size > 0) m_.work_pool()[in.work_offset] = asm_.residual()(in.dofs[0]);
-      }
-    });
   }
   void notify() {
     for (auto& f : observers_) f(*this);
@@ -456,28 +365,16 @@ class bdf_simulation<model<Es...>, Solver> {
     return worst;
   }
 
-  model_type& m_;
   bdf_options bopt_;
   Solver solver_;
-  assembler<model_type> asm_;
   bdf_detail::history hist_;
-  diagnostics log_;
   std::vector<observer> observers_;
   std::vector<observer> step_observers_;
-  global_state s_, s0_;
-  std::vector<char> prescribed_;
-  std::vector<double> rhs_;
   Eigen::VectorXd y_p_, yp_p_, w_, e_, dy_;
-  run_options opt_{};
-  run_statistics stats_{};
-  std::optional<error> last_failure_;
-  double t_ = 0;
-  double recommended_ = std::numeric_limits<double>::infinity();
   double c_jac_ = 0;  // c of the kept factorisation
   double ss_ = 20;    // IDA's rate / (1 - rate) estimate for the first Newton correction
   int nef_ = 0, ncf_ = 0;
   bool jac_valid_ = false;
-  bool started_ = false;
 };
 
 /// Deduction guides: `bdf_simulation sim(model)`, `bdf_simulation sim(model, bdf_options{...})`.

@@ -1,0 +1,174 @@
+#pragma once
+/// \file
+/// What the two time-integration drivers share: the one-step `simulation`
+/// (simulation.hpp) and the multistep `bdf_simulation` (bdf/bdf_simulation.hpp).
+/// driver_core<Model> holds the model, the assembler, the diagnostics log, the
+/// global state and the run statistics, and carries out the element-level
+/// phases the same way for both: NEWINT work, model evaluation, the commit of an
+/// accepted step, the (re)build of the equations when DOFs were added, and the
+/// zero step (initial conditions, prescribed motions, consistent initial
+/// derivatives, initialisation.hpp). Each driver adds its own scheme, Newton
+/// solver and step control.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "pradis/assembly/assembler.hpp"
+#include "pradis/core/diagnostics.hpp"
+#include "pradis/core/element.hpp"
+#include "pradis/core/error.hpp"
+#include "pradis/integrators/failures.hpp"
+#include "pradis/integrators/initialisation.hpp"
+#include "pradis/integrators/options.hpp"
+
+namespace pradis::detail {
+
+/// The state and element-level phases shared by the drivers (see the file comment).
+template <class Model>
+class driver_core {
+ protected:
+  explicit driver_core(Model& m) : m_(m) {}
+
+  /// Calls f(instance) for every element instance of the model.
+  template <class F>
+  void for_each_instance(F&& f) {
+    m_.for_each_instances([&](auto& vec) {
+      for (auto& in : vec) f(in);
+    });
+  }
+  /// The element context of an instance at the current time and step count.
+  element_context context_for(auto& in) {
+    using E = std::remove_cvref_t<decltype(in.element)>;
+    element_context ctx(E::passport.name, in.name, &log_);
+    assembler<Model>::bind(m_, in, ctx);
+    ctx.time = t_;
+    ctx.nstep = stats_.steps;
+    return ctx;
+  }
+  /// NEWINT work of every element (parameter checks, work vectors).
+  void new_integration() {
+    for_each_instance([&](auto& in) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (HasNewIntegration<E>) {
+        element_context ctx = context_for(in);
+        ctx.newint = true;
+        in.element.new_integration(ctx);
+      }
+    });
+    recommended_ = std::numeric_limits<double>::infinity();
+  }
+  /// Evaluates the model. During step k (1-based) elements see NSTEP = k; at
+  /// the zero step and between steps they see the number of accepted steps.
+  void evaluate(const jacobian_coefficients& c, double h, bool jac, int niter = 0, bool in_step = false) {
+    call_info info{t_, h, stats_.steps + (in_step ? 1 : 0), niter, jac, &log_, opt_.newton.dabsi};
+    ++stats_.evaluations;
+    if (jac) ++stats_.jacobian_evaluations;
+    asm_.evaluate(m_, s_, c, info);
+  }
+  /// Accepts the step: NEW state to OLD, element commit hooks, source reactions.
+  void commit() {
+    m_.old_state_pool() = m_.new_state_pool();
+    for_each_instance([&](auto& in) {
+      using E = std::remove_cvref_t<decltype(in.element)>;
+      if constexpr (requires(E& e, element_context& c) { e.commit(c); }) {
+        element_context ctx = context_for(in);
+        in.element.commit(ctx);
+      }
+      if constexpr (PrescribesMotion<E>) {
+        // W(1) of a source: the force it applies to its DOF (the reaction).
+        if (in.work_size > 0) m_.work_pool()[in.work_offset] = asm_.residual()(in.dofs[0]);
+      }
+    });
+  }
+  /// (Re)builds the equations and the pattern; DOFs added since the start (new
+  /// internal or user DOFs) start at rest, a new rotational node at the identity.
+  /// The driver then analyses the pattern with its solver.
+  void rebuild_equations() {
+    if (prescribed_.size() != static_cast<std::size_t>(m_.dof_count())) {
+      const auto old = static_cast<Eigen::Index>(prescribed_.size());
+      prescribed_.resize(static_cast<std::size_t>(m_.dof_count()), 0);
+      global_state g;
+      g.resize(m_.dof_count());
+      g.u.head(old) = s_.u;
+      g.v.head(old) = s_.v;
+      g.a.head(old) = s_.a;
+      g.p.head(old) = s_.p;
+      for (const auto& node : m_.rotation_nodes())
+        if (node.dofs[3] >= old) g.u(node.dofs[3]) = 1.0;
+      s_ = g;
+    }
+    asm_.build(m_, prescribed_);
+    rhs_.resize(static_cast<std::size_t>(asm_.equations()));
+    s0_ = s_;
+  }
+  /// The zero step up to the consistent initial derivatives: the hidden q4 of
+  /// every rotational node at 1, NEWINT, initial conditions and prescribed
+  /// motions, build() (the driver's: rebuild_equations and its analysis),
+  /// initial derivatives with `solver` (which then holds their factorisation),
+  /// and the log's note on initial conditions a massless DOF loses. The driver
+  /// then resets its own history and calls finish_zero_step().
+  template <class Solver, class Build>
+  void start_zero_step(Solver& solver, Build&& build) {
+    s_.resize(m_.dof_count());
+    for (const auto& node : m_.rotation_nodes()) s_.u(node.dofs[3]) = 1.0;
+    const std::vector<std::string> driver = detect_sources(m_, prescribed_, log_);
+    new_integration();
+    const auto [set_u, set_v] =
+        apply_initial_conditions(m_, s_, prescribed_, driver, [&](auto& in) { return context_for(in); });
+    apply_sources(m_, s_, t_);
+    build();
+    started_ = true;
+    const std::vector<char> kind = initial_derivatives(
+        m_, asm_, solver, s_, rhs_, stats_, log_, [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
+    warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);
+  }
+  /// The end of the zero step: the pseudo-acceleration starts at the consistent
+  /// acceleration; flows and work vectors at t0 (no Jacobian); the zero step
+  /// is accepted.
+  void finish_zero_step() {
+    s_.p = s_.a;
+    evaluate({0, 0, 0}, 0.0, false);
+    recommended_ = asm_.recommended_step();
+    commit();
+  }
+  /// The index of a DOF of this model for reading the state; throws
+  /// invalid_model for a DOF outside the model (index out of range, or handed
+  /// out by another model) or before the first stage.
+  Eigen::Index checked(dof d) const {
+    if (d.index < 0 || d.index >= s_.u.size() || !m_.owns(d)) bad_dof(d);
+    return d.index;
+  }
+  [[noreturn]] void bad_dof(dof d) const {
+    throw error(error_code::invalid_model,
+                "DOF index " + std::to_string(d.index) +
+                    (!m_.owns(d) ? " belongs to another model than this simulation's"
+                     : started_  ? " is not a DOF of this model (it has " + std::to_string(s_.u.size()) + " DOFs)"
+                                 : " asked for before the first stage has run"),
+                {}, {}, d.index);
+  }
+  /// Writes the error to the log and throws it.
+  [[noreturn]] void raise(const error& e) {
+    log_.write(e);
+    throw e;
+  }
+
+  Model& m_;
+  assembler<Model> asm_;
+  diagnostics log_;
+  global_state s_, s0_;
+  std::vector<char> prescribed_;
+  std::vector<double> rhs_;
+  run_options opt_{};
+  run_statistics stats_{};
+  std::optional<error> last_failure_;
+  double t_ = 0;
+  double recommended_ = std::numeric_limits<double>::infinity();
+  bool started_ = false;
+};
+
+}  // namespace pradis::detail
