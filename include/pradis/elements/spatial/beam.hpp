@@ -27,9 +27,9 @@ namespace pradis::elements {
 /// moments dU/dtheta (a small global rotation theta of a node) on q1, q2, q3, none on
 /// q4. The flows are the closed-form gradient of U (detail::corotational, a reverse
 /// sweep of the kinematics); the Jacobian is exact: that gradient evaluated with
-/// first-order dual numbers (spatial/dual.hpp) seeded with the chord and small global
-/// rotations of the end triads gives d(flows)/d(chord, phi_a, phi_b); the chain
-/// through phi = (2/s) E(q) q is applied by hand. The reference configuration is the
+/// first-order dual numbers (spatial/dual.hpp) seeded with the chord and a small
+/// global rotation phi_b of end B gives d(flows)/d(chord, phi_b), objectivity gives
+/// d(flows)/d(phi_a); the chain through phi = (2/s) E(q) q is applied by hand. The reference configuration is the
 /// one with identity nodal quaternions; the section's local y axis is given by a vector.
 struct elastic_beam {
   static constexpr pradis::passport passport{.name = "BEAM3", .ext = 12, .ent = 2, .par = 15, .wrk = 3, .adr = 1, .ign = 23};
