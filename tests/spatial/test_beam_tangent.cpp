@@ -6,7 +6,10 @@
 // derivatives, so they agree to round-off. Also: the flows of the flows-only call
 // (the zero step) are those of the call with the Jacobian, and the strain energy is
 // invariant under a rigid rotation of the whole beam (the corotational frame
-// removes it, Crisfield vol. 2, ch. 17) while its gradient turns with it.
+// removes it, Crisfield vol. 2, ch. 17) while its gradient turns with it. And in a
+// transient with large 3D bending (a cantilever of BEAM3 + BEAMI3 under a tip force
+// and a tip moment), the element and the reference (as a test-only element type)
+// give the same motion.
 
 #include <doctest/doctest.h>
 
@@ -15,9 +18,13 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "beam_reference.hpp"
 #include "pradis/elements/library.hpp"
+#include "pradis/integrators/simulation.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
@@ -85,6 +92,65 @@ elastic_beam journal() {
   return elastic_beam({2.1e11, 8.1e10, a, i, i, 2 * i, 0.05, 0, 0, 0.08, 0, 0, 0, 1, 0});
 }
 
+/// BEAM3 with the reference flows and tangent (beam_reference.hpp): a test-only element type.
+struct reference_beam {
+  static constexpr pradis::passport passport{.name = "BEAM3REF", .ext = 12, .ent = 2, .par = 15, .wrk = 3, .adr = 1, .ign = 23};
+  static constexpr std::array<rotation_slot, 2> rotation_nodes = elastic_beam::rotation_nodes;
+  static constexpr element_help help = elastic_beam::help;
+  using parameters = elastic_beam::parameters;
+  elastic_beam beam;
+  explicit reference_beam(parameters q) : beam(q) {}
+  static reference_beam from_parameters(std::span<const double> v) {
+    return reference_beam(elastic_beam::from_parameters(v).p);
+  }
+  void new_integration(element_context& ctx) const { beam.new_integration(ctx); }
+  void evaluate(const local_input<reference_beam>& in, local_output<reference_beam>& out, element_context& ctx) const {
+    local_input<elastic_beam> bin;
+    bin.u = in.u;
+    local_output<elastic_beam> flows;  // the singularity checks and the work
+    flows.want_jacobian = false;
+    beam.evaluate(bin, flows, ctx);
+    const auto r = pradis_beam_reference::evaluate(beam, in.u);
+    out.f = r.f;
+    if (out.want_jacobian) out.K = r.K;
+  }
+};
+
+/// A cantilever of 4 elements Beam + BEAMI3 along X (L = 1 m), clamped at the root,
+/// with a tip force in Z and a tip moment about Y, both ramped in: large 3D bending.
+template <class Beam>
+struct bent_cantilever {
+  model<Beam, beam_inertia, spatial_force, body_torque> m;
+  std::vector<dof> watched;  // every translation and rotation potential
+  bent_cantilever() {
+    const double e = 1e4, g = 4e3, a = 0.03, iy = 1e-4, iz = 2e-4, j = 1.5e-4, rho = 100;
+    const dof gr = m.ground();
+    rotation_node ra = m.add_rotation_node("r0", gr, gr, gr);
+    std::array<dof, 3> xa{gr, gr, gr};
+    constexpr int n = 4;
+    for (int i = 0; i < n; ++i) {
+      const auto x = m.add_dofs(3, "x" + std::to_string(i + 1));
+      const std::array<dof, 3> xb{x[0], x[1], x[2]};
+      const rotation_node rb = m.add_rotation_node("r" + std::to_string(i + 1));
+      const double x0 = static_cast<double>(i) / n, x1 = static_cast<double>(i + 1) / n;
+      m.template add<Beam>("beam" + std::to_string(i + 1), {e, g, a, iy, iz, j, x0, 0, 0, x1, 0, 0, 0, 1, 0}, xa[0],
+                           xa[1], xa[2], ra, xb[0], xb[1], xb[2], rb);
+      m.template add<beam_inertia>("mass" + std::to_string(i + 1),
+                                   {rho, a, iy, iz, iy + iz, x0, 0, 0, x1, 0, 0, 0, 1, 0}, xa[0], xa[1], xa[2], ra,
+                                   xb[0], xb[1], xb[2], rb);
+      for (dof d : xb) watched.push_back(d);
+      for (dof d : {rb.q1, rb.q2, rb.q3, rb.q4}) watched.push_back(d);
+      xa = xb;
+      ra = rb;
+    }
+    // P(t) = P/2 (1 - cos(2 pi t)), ramped over 0.5 s: 3 E Iy P / L^3 at the end (a tip deflection of 1 L
+    // in the linear theory) and a moment about Y of half the one that rolls the bar into a circle.
+    const double p = 3 * e * iy, mo = std::numbers::pi * e * iz;
+    m.template add<spatial_force>("force", {0, 0, p / 2, 0, 0, p / 2, 1, -90}, xa[0], xa[1], xa[2]);
+    m.template add<body_torque>("moment", {0, mo / 2, 0, 0, mo / 2, 0, 1, -90}, ra);
+  }
+};
+
 }  // namespace
 
 TEST_SUITE("spatial/beam") {
@@ -147,5 +213,28 @@ TEST_SUITE("spatial/beam") {
       const double scale = a.f.cwiseAbs().maxCoeff();
       for (int i : {0, 3, 6, 9}) CHECK((b.f.segment<3>(i) - r * a.f.segment<3>(i)).norm() <= 1e-11 * scale);
     });
+  }
+
+  TEST_CASE("BEAM3 in a transient with large 3D bending: the same motion as with the nested-dual reference tangent") {
+    // Both tangents are exact: Newton converges along the same path; the motions agree to round-off.
+    bent_cantilever<elastic_beam> a;
+    bent_cantilever<reference_beam> b;
+    simulation sa(a.m);
+    simulation sb(b.m);
+    constexpr newton_options tight{.dabsu = 1e-12, .drltu = 0, .dabsi = 1e-10, .drlti = 0, .itr = 10};
+    double worst = 0;  // over the translations [m] (L = 1 m) and the quaternion potentials (|q| = 1 initially)
+    for (int k = 1; k <= 20; ++k) {
+      sa.run({.end = 0.025 * k, .smax = 0.025, .newton = tight});
+      sb.run({.end = 0.025 * k, .smax = 0.025, .newton = tight});
+      for (std::size_t i = 0; i < a.watched.size(); ++i)
+        worst = std::max(worst, std::abs(sa.u(a.watched[i]) - sb.u(b.watched[i])));
+    }
+    const std::size_t tip = a.watched.size() - 7;  // x, y, z, q1..q4 of the last node
+    const double tip_move = std::hypot(sa.u(a.watched[tip]), sa.u(a.watched[tip + 1]), sa.u(a.watched[tip + 2]));
+    MESSAGE("tip displacement ", tip_move, " m, largest difference ", worst, "; Newton iterations ",
+            sa.statistics().newton_iterations, " and ", sb.statistics().newton_iterations);
+    CHECK(tip_move > 0.2);  // large deformation: the tip moves by a good part of L
+    CHECK(worst <= 1e-10);
+    CHECK(sa.statistics().newton_iterations == sb.statistics().newton_iterations);
   }
 }
