@@ -85,8 +85,9 @@ double row_relative_difference(const A& a, const B& b) {
   return worst;
 }
 
-/// The crankshaft's journal section (examples/crankshaft): steel, diameter 50 mm, 30 mm
-/// long; E A / (E I / L^2) = 5.8 (a short element), the other, the example's oblique beam.
+/// A short steel element like the crankshaft's journals (examples/crankshaft): diameter
+/// 50 mm, 30 mm long, A L^2 / I = 5.8 (the other beam tested: BEAM3's example, oblique,
+/// with an unsymmetric section).
 elastic_beam journal() {
   const double dia = 0.05, a = std::numbers::pi * dia * dia / 4, i = std::numbers::pi * std::pow(dia, 4) / 64;
   return elastic_beam({2.1e11, 8.1e10, a, i, i, 2 * i, 0.05, 0, 0, 0.08, 0, 0, 0, 1, 0});
