@@ -30,6 +30,7 @@
 #include "pradis/elements/planar/planar_link.hpp"
 #include "pradis/elements/planar/planar_rigid_link.hpp"
 #include "pradis/elements/spatial/beam.hpp"
+#include "pradis/elements/spatial/beam_inertia.hpp"
 #include "pradis/elements/spatial/coupling.hpp"
 #include "pradis/elements/spatial/initial_rotation.hpp"
 #include "pradis/elements/spatial/loads.hpp"

@@ -2,7 +2,8 @@
 /// \file
 /// Forward-mode automatic differentiation with fixed-size dual numbers: a value and
 /// N directional derivatives, no allocation. Nesting (dual<dual<double, N>, N>) gives
-/// second derivatives. Used by the corotational beam (BEAM3) for its tangent.
+/// second derivatives. The corotational beam (BEAM3) differentiates its closed-form
+/// gradient with it (first order); its reference test nests it.
 
 #include <array>
 #include <cmath>
