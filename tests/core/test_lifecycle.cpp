@@ -202,11 +202,11 @@ TEST_CASE("add_by_name places by catalog name; an unknown name is refused") {
   CHECK(found->type == loc.type);
   CHECK(found->index == loc.index);
 
-  const auto e = error_of([&] { m.add_by_name("LINKX", "typo", four, par); });
+  const auto e = error_of([&] { m.add_by_name("LINKQQ", "typo", four, par); });
   REQUIRE(e);
   CHECK(e->code() == error_code::invalid_model);
   CHECK(e->instance() == "typo");
-  CHECK(contains(e->message(), "unknown element type 'LINKX'"));
+  CHECK(contains(e->message(), "unknown element type 'LINKQQ'"));
   CHECK_FALSE(m.find("typo"));
 
   // A catalog-placed LINKD works in a run: it is the pendulum rod of a mass.

@@ -131,11 +131,11 @@ TEST_SUITE("core/model") {
     CHECK(m.work("link").size() == 3);
     CHECK_THROWS_AS(m.work("nothing"), error);
     try {
-      m.add_by_name("LINKX", "bad", d, par);
+      m.add_by_name("LINKQQ", "bad", d, par);
       FAIL("unknown catalog name must be refused");
     } catch (const error& e) {
       CHECK(e.code() == error_code::invalid_model);
-      CHECK(std::string(e.what()).find("LINKX") != std::string::npos);
+      CHECK(std::string(e.what()).find("LINKQQ") != std::string::npos);
     }
   }
 

@@ -21,7 +21,7 @@ constexpr std::string_view code100_situation(std::string_view name) {
   if (name == "X0") return "u0 is changed";
   if (name == "V0") return "v0 is changed";
   if (name == "MD") return "J < 0";
-  if (name == "LINKD") return "coincide";
+  if (name == "LINKD" || name == "LINKX") return "coincide";
   if (name == "MEKS") return "R < 0";
   if (name == "BODY3") return "not positive definite";
   if (name == "F3" || name == "M3" || name == "F3B" || name == "M3B") return "f < 0";
@@ -29,6 +29,8 @@ constexpr std::string_view code100_situation(std::string_view name) {
   if (name == "SD3" || name == "RSD3") return "k < 0";
   if (name == "SPH3") return "k <= 0";
   if (name == "REV3") return "kr <= 0";
+  if (name == "SPH3X") return "a parameter is not finite";
+  if (name == "REV3X") return "a hinge axis is zero";
   if (name == "SHC3") return "the axis is zero, k <= 0, c < 0";
   if (name == "BEAM3" || name == "BEAMI3") return "coincide";
   if (name == "HVOL") return "V, B, pa or n is not positive";

@@ -79,8 +79,8 @@ TEST_SUITE("lang/commands") {
     CHECK(hht.str().find("ALPHA - -1/3 <= ALPHA <= 0") != std::string::npos);
     CHECK(lang::print_reference(galpha, err, "GAlpha"));
     CHECK(galpha.str().find("RHOINF - spectral radius at infinite frequency, 0 <= RHOINF <= 1") != std::string::npos);
-    CHECK_FALSE(lang::print_reference(os, err, "LINKX"));
-    CHECK(err.str().find("no element or program named 'LINKX' (did you mean 'LINKD'?)") != std::string::npos);
+    CHECK_FALSE(lang::print_reference(os, err, "LINKDD"));
+    CHECK(err.str().find("no element or program named 'LINKDD' (did you mean 'LINKD'?)") != std::string::npos);
   }
 
   TEST_CASE("`pradis check NAME` passes for every library element and prints the harness table") {

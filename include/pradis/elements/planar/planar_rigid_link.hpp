@@ -52,8 +52,8 @@ struct planar_rigid_link {
       .work = "1 - length L0 [m]\n"
               "2 - current length L [m] (L - L0 is the constraint's residual)\n"
               "3 - axial force N [N], positive in tension (the reaction of the constraint)",
-      .special = "Internal DOF 1: the axial force N [N], positive in tension (its velocity-level unknown). "
-                 "Code 100 if A and B coincide initially or a coordinate is not finite; code 75 if the current "
+      .special = "Internal DOF 1: the axial force N [N], positive in tension (its velocity-level unknown); "
+                 "code 100 if A and B coincide initially or a coordinate is not finite; code 75 if the current "
                  "length becomes close to zero or the link's direction reverses within one step. The constraint "
                  "row has a zero diagonal (no inertia, no stiffness of its own); the model's points must carry "
                  "mass or other constraints so that the saddle-point matrix is regular. Use HHT or "

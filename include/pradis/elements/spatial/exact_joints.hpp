@@ -48,7 +48,8 @@ struct exact_spherical_joint {
               "3 - Y [N]\n"
               "4 - Z [N]",
       .special = "Internal DOFs 3..5 (after the two hidden q4): the force lambda on the joint, global X, Y, Z [N] "
-                 "(velocity-level unknowns). The points A and B should coincide initially (else the first step closes the gap). Code 100 if a parameter is not finite; code 75 if a quaternion norm "
+                 "(velocity-level unknowns). The points A and B should coincide initially (else the first step "
+                 "closes the gap); code 100 if a parameter is not finite; code 75 if a quaternion norm "
                  "comes near zero. The constraint rows have a zero diagonal; the joined bodies must carry mass. "
                  "Use HHT or generalized-alpha when the joint force matters: under NEWMARK it may alternate from "
                  "step to step"};
@@ -145,7 +146,7 @@ struct exact_revolute_joint {
               "8 - about global Z [N m]",
       .special = "Internal DOFs 3..5 (after the two hidden q4): the joint force lambda, global X, Y, Z [N]; 6..7: "
                  "the multipliers mu_1, mu_2 of the two axis constraints [N m] (velocity-level unknowns). The "
-                 "joint points and the hinge axes should coincide initially. Code 100 if a hinge axis is zero or a "
+                 "joint points and the hinge axes should coincide initially; code 100 if a hinge axis is zero or a "
                  "parameter is not finite; code 75 if a quaternion norm comes near zero. The constraint rows have "
                  "a zero diagonal; the joined bodies must carry mass and inertia. Under NEWMARK the joint force "
                  "may alternate from step to step (HHT or generalized-alpha damp it)"};
