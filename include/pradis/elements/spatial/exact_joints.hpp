@@ -18,6 +18,35 @@
 
 namespace pradis::elements {
 
+namespace detail {
+/// The point constraint p_B - p_A = 0 with its force lambda at local 14..16,
+/// shared by SPH3X and REV3X: flows of lambda on both bodies (two_point_flows
+/// with dF/dd = 0, which also zeroes K and C), the constraint rows f(14..16) = d
+/// and, when wanted, their Jacobian rows in K and the multiplier columns in C.
+/// Returns d = p_B - p_A.
+template <class Out>
+spatial::vec3 exact_point_constraint(const attached_point& a, const attached_point& b, const spatial::vec3& lambda,
+                                     Out& out) {
+  using namespace spatial;
+  const mat3 zero = mat3::Zero();
+  two_point_flows(a, b, lambda, zero, zero, out);
+  const vec3 d = b.p - a.p;
+  out.f.template segment<3>(14) = d;
+  if (!out.want_jacobian) return d;
+  const attached_point* pts[2] = {&a, &b};
+  const double sg[2] = {-1.0, 1.0};
+  for (int j = 0; j < 2; ++j) {
+    // Constraint rows: d(p_B - p_A)/du of end j.
+    out.K.template block<3, 3>(14, 6 * j) += sg[j] * mat3::Identity();
+    add_quaternion_columns(out.K, 14, 6 * j + 3, 12 + j, sg[j] * pts[j]->dp_dq);
+    // Multiplier columns: the flows' derivative by lambda.
+    out.C.template block<3, 3>(6 * j, 14) += sg[j] * mat3::Identity();
+    out.C.template block<3, 3>(6 * j + 3, 14) += sg[j] * skew(pts[j]->rho);
+  }
+  return d;
+}
+}  // namespace detail
+
 /// SPH3X: spherical (ball) joint that holds point A of body a on point B of body
 /// b exactly (p = X0 + x + R(q) r, see SD3). The force lambda that the joint
 /// transmits is an internal DOF triple (its velocity-level unknowns, local 14..16).
@@ -80,25 +109,9 @@ struct exact_spherical_joint {
       ctx.singular("Lq near zero: the quaternion norm |q| of a rotational node has vanished");
     const auto [a, b] = p.geo.points(in);
     const vec3 lambda(in.v(14), in.v(15), in.v(16));
-    const mat3 zero = mat3::Zero();
-    detail::two_point_flows(a, b, lambda, zero, zero, out);  // sets f(0..11), K and C (geometric part)
-    const vec3 d = b.p - a.p;
-    out.f(12) = 0.0;
-    out.f(13) = 0.0;
-    out.f.template segment<3>(14) = d;
+    const vec3 d = detail::exact_point_constraint(a, b, lambda, out);
     ctx.work[0] = d.norm();
     for (int i = 0; i < 3; ++i) ctx.work[static_cast<std::size_t>(i + 1)] = -lambda(i);
-    if (!out.want_jacobian) return;
-    const detail::attached_point* pts[2] = {&a, &b};
-    const double sg[2] = {-1.0, 1.0};
-    for (int j = 0; j < 2; ++j) {
-      // Constraint rows: d(p_B - p_A)/du of end j.
-      out.K.template block<3, 3>(14, 6 * j) += sg[j] * mat3::Identity();
-      detail::add_quaternion_columns(out.K, 14, 6 * j + 3, 12 + j, sg[j] * pts[j]->dp_dq);
-      // Multiplier columns: the flows' derivative by lambda.
-      out.C.template block<3, 3>(6 * j, 14) += sg[j] * mat3::Identity();
-      out.C.template block<3, 3>(6 * j + 3, 14) += sg[j] * skew(pts[j]->rho);
-    }
   }
   /// States the checks may use: both quaternion norms are not near zero.
   bool admissible(const local_input<exact_spherical_joint>& in) const {
@@ -196,10 +209,7 @@ struct exact_revolute_joint {
       ctx.singular("Lq near zero: the quaternion norm |q| of a rotational node has vanished");
     const auto [a, b] = p.geo.points(in);
     const vec3 lambda(in.v(14), in.v(15), in.v(16));
-    const mat3 zero = mat3::Zero();
-    detail::two_point_flows(a, b, lambda, zero, zero, out);
-    const vec3 d = b.p - a.p;
-    out.f.template segment<3>(14) = d;
+    const vec3 d = detail::exact_point_constraint(a, b, lambda, out);
     const mat3 ra = rotation_matrix(detail::slot_quaternion(in.u, 3, 12));
     const vec3 ub = rotation_matrix(detail::slot_quaternion(in.u, 9, 13)) * eb;
     const vec3 nn[2] = {ra * n1, ra * n2};
@@ -220,14 +230,6 @@ struct exact_revolute_joint {
     }
     ctx.work[4] = std::atan2(ua.cross(ub).norm(), ua.dot(ub));
     if (!out.want_jacobian) return;
-    const detail::attached_point* pts[2] = {&a, &b};
-    const double sg[2] = {-1.0, 1.0};
-    for (int j = 0; j < 2; ++j) {
-      out.K.template block<3, 3>(14, 6 * j) += sg[j] * mat3::Identity();
-      detail::add_quaternion_columns(out.K, 14, 6 * j + 3, 12 + j, sg[j] * pts[j]->dp_dq);
-      out.C.template block<3, 3>(6 * j, 14) += sg[j] * mat3::Identity();
-      out.C.template block<3, 3>(6 * j + 3, 14) += sg[j] * skew(pts[j]->rho);
-    }
     const mat3 sub = skew(ub);
     for (int i = 0; i < 2; ++i) {
       const mat3 sn = skew(nn[i]);
