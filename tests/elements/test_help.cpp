@@ -31,6 +31,12 @@ constexpr std::string_view code100_situation(std::string_view name) {
   if (name == "REV3") return "kr <= 0";
   if (name == "SPH3X") return "a parameter is not finite";
   if (name == "REV3X") return "a hinge axis is zero";
+  if (name == "UNI3X") return "a cross axis is zero";
+  if (name == "CYL3X") return "an axis is zero";
+  if (name == "PRI3X" || name == "FIX3X") return "a reference vector is parallel to its axis";
+  if (name == "PTL3X") return "the direction is zero";
+  if (name == "PTP3X") return "the normal is zero";
+  if (name == "PIN2X") return "a parameter is not finite";
   if (name == "SHC3") return "the axis is zero, k <= 0, c < 0";
   if (name == "BEAM3" || name == "BEAMI3") return "coincide";
   if (name == "HVOL") return "V, B, pa or n is not positive";
@@ -83,7 +89,7 @@ void check_all_special(pradis::type_list<Es...>) {
 
 TEST_SUITE("elements/help") {
   TEST_CASE("the help text of every library element names its code-100 situations (and 90 / 75 where they apply)") {
-    static_assert(pradis::elements::library_elements::size == 61);
+    static_assert(pradis::elements::library_elements::size == 68);
     check_all_special(pradis::elements::library_elements{});
   }
 }

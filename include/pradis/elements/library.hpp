@@ -28,6 +28,7 @@
 #include "pradis/elements/pneumatic/orifice.hpp"
 #include "pradis/elements/planar/planar_inertia.hpp"
 #include "pradis/elements/planar/planar_link.hpp"
+#include "pradis/elements/planar/planar_pin_joint.hpp"
 #include "pradis/elements/planar/planar_rigid_link.hpp"
 #include "pradis/elements/spatial/beam.hpp"
 #include "pradis/elements/spatial/beam_inertia.hpp"
@@ -38,6 +39,7 @@
 #include "pradis/model/model.hpp"
 // --- spatial connecting elements (SD3, RSD3, SPH3, REV3) ---
 #include "pradis/elements/spatial/joints.hpp"
+#include "pradis/elements/spatial/exact_frame_joints.hpp"
 #include "pradis/elements/spatial/exact_joints.hpp"
 #include "pradis/elements/spatial/spring_damper.hpp"
 // --- end of spatial connecting elements ---
@@ -48,15 +50,17 @@ namespace pradis::elements {
 using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, constant_force, sine_force,
                                   displacement_source, velocity_source, initial_displacement, initial_velocity>;
 /// Planar mechanics.
-using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass, planar_rigid_link>;
+using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass, planar_rigid_link, planar_pin_joint>;
 /// Spatial mechanics (rotational nodes with the hidden fourth potential, docs/rotations.md).
 using spatial_elements = type_list<rigid_body, spatial_force, spatial_torque, body_force, body_torque, initial_rotation>;
-// --- spatial connecting elements (SD3, RSD3, SPH3, REV3, SHC3, SPH3X, REV3X) ---
-/// Spatial connecting elements: spring-dampers and penalty joints between bodies, and the
-/// shaft coupling from a one-dimensional rotation to a spatial node (docs/rotations.md).
+// --- spatial connecting elements (SD3, RSD3, SPH3, REV3, SHC3 and the exact joints) ---
+/// Spatial connecting elements: spring-dampers and penalty joints between bodies, the
+/// shaft coupling from a one-dimensional rotation to a spatial node (docs/rotations.md),
+/// and the exact joints with Lagrange multipliers (docs/joints.md).
 using spatial_connector_elements =
     type_list<spatial_spring_damper, rotational_spring_damper, spherical_joint, revolute_joint, shaft_coupling,
-              exact_spherical_joint, exact_revolute_joint>;
+              exact_spherical_joint, exact_revolute_joint, exact_universal_joint, exact_cylindrical_joint,
+              exact_prismatic_joint, exact_fixed_joint, exact_point_on_line, exact_point_on_plane>;
 // --- end of spatial connecting elements ---
 /// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md).
 using beam_elements = type_list<elastic_beam, beam_inertia>;

@@ -16,8 +16,9 @@
 #include "pradis/elements/spatial/attachment.hpp"
 #include "pradis/spatial/quaternion.hpp"
 
-/// The parameter lines 1..12 (the joint geometry) of the help texts of SPH3 and REV3,
-/// a string literal so that each element appends its own lines at compile time.
+/// The parameter lines 1..12 (the joint geometry) of the help texts of the spatial
+/// joints (SPH3, REV3 and the exact joints), a string literal so that each element
+/// appends its own lines at compile time.
 #define PRADIS_JOINT_GEOMETRY_HELP \
     "1 - initial X of body a's reference point [m]\n" \
     "2 - initial Y of body a's reference point [m]\n" \
@@ -303,5 +304,3 @@ struct revolute_joint {
 
 }  // namespace pradis::elements
 
-#undef PRADIS_JOINT_GEOMETRY_HELP
-#undef PRADIS_HINGE_AXES_HELP
