@@ -116,6 +116,101 @@ std::pair<std::vector<std::string>, std::vector<std::string>> apply_initial_cond
   return {std::move(set_u), std::move(set_v)};
 }
 
+/// The q4 rows of the zero step's matrix and right-hand side: the hidden q4's
+/// unknown is its acceleration, from the norm equation differentiated twice,
+/// d2(Lq)/dt2 = (q . q'' + |q'|^2 - (q . q')^2 / Lq^2) / Lq = 0: without it q4''
+/// would start inconsistent and the trapezoidal rule would carry the error on as
+/// an undamped alternation of q'' (which enters the moments through E(q) q'').
+template <class Model, class Assembler>
+void rotation_norm_rows(const Model& m, const Assembler& as, const global_state& s, std::vector<double>& j,
+                        std::vector<double>& rhs) {
+  const auto& pat = as.pattern();
+  for (const auto& node : m.rotation_nodes()) {
+    const int e4 = as.equation_of(node.dofs[3]);
+    if (e4 < 0) continue;
+    Eigen::Vector4d q, qd, qdd;
+    for (int k = 0; k < 4; ++k) {
+      const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
+      q(k) = s.u(d);
+      qd(k) = s.v(d);
+      qdd(k) = s.a(d);
+    }
+    const double lq = q.norm(), g = q.dot(qd);
+    for (int qq = pat.row_ptr[static_cast<std::size_t>(e4)]; qq < pat.row_ptr[static_cast<std::size_t>(e4) + 1]; ++qq)
+      j[static_cast<std::size_t>(qq)] = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      const int ec = as.equation_of(node.dofs[static_cast<std::size_t>(k)]);
+      if (ec >= 0) j[static_cast<std::size_t>(pat.find(e4, ec))] = q(k) / lq;
+    }
+    rhs[static_cast<std::size_t>(e4)] = -(q.dot(qdd) + qd.squaredNorm() - g * g / (lq * lq)) / lq;
+  }
+}
+
+/// Marks the index-3 constraint equations among the algebraic ones (kind 0) as
+/// kind 3: no inertia or viscosity in the whole row (a constraint on positions:
+/// only K entries, some in an inertial column) and the DOF's value enters other
+/// equations through C (the multiplier of the flows G^T lambda, the velocity-level
+/// unknown of an internal DOF: LINKX, SPH3X, REV3X, ...). Returns whether any was found.
+template <class Pattern>
+bool mark_index3_multipliers(const Pattern& pat, const std::vector<double>& mvals, const std::vector<double>& cvals,
+                             const std::vector<double>& kvals, std::vector<char>& kind) {
+  const int ne = static_cast<int>(kind.size());
+  std::vector<char> in_c(kind.size(), 0);
+  for (int r = 0; r < ne; ++r)
+    for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q)
+      if (pat.col[static_cast<std::size_t>(q)] != r && cvals[static_cast<std::size_t>(q)] != 0.0)
+        in_c[static_cast<std::size_t>(pat.col[static_cast<std::size_t>(q)])] = 1;
+  bool any = false;
+  for (int r = 0; r < ne; ++r) {
+    if (kind[static_cast<std::size_t>(r)] != 0 || !in_c[static_cast<std::size_t>(r)]) continue;
+    bool position_only = true, on_inertial = false;
+    for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
+      const auto sq = static_cast<std::size_t>(q);
+      if (mvals[sq] != 0.0 || cvals[sq] != 0.0) position_only = false;
+      if (kvals[sq] != 0.0 && kind[static_cast<std::size_t>(pat.col[sq])] == 1) on_inertial = true;
+    }
+    if (position_only && on_inertial) {
+      kind[static_cast<std::size_t>(r)] = 3;
+      any = true;
+    }
+  }
+  return any;
+}
+
+/// The right-hand side of the kind-3 rows: minus the second time derivative of
+/// each constraint g(u) along u(t) = u0 + t v0 + t^2 a0 / 2 (that is G a0 + (dG/dt) v0),
+/// by central second differences at the steps e and e / 2 with Richardson
+/// extrapolation (error O(e^4)). e = 1e-3 s, smaller for fast motions.
+template <class Assembler, class Evaluate>
+void constraint_accelerations(Assembler& as, global_state& s, const std::vector<char>& kind, std::vector<double>& rhs,
+                              Evaluate& evaluate) {
+  const int ne = as.equations();
+  const Eigen::VectorXd u0 = s.u;
+  const double vmax = s.v.template lpNorm<Eigen::Infinity>(), amax = s.a.template lpNorm<Eigen::Infinity>();
+  double e = 1e-3;
+  if (vmax > 0) e = std::min(e, 0.05 / vmax);
+  if (amax > 0) e = std::min(e, std::sqrt(0.1 / amax));
+  std::vector<double> g0(kind.size()), d[2];
+  auto rows_at = [&](double t, std::vector<double>& out) {
+    s.u = u0 + t * s.v + (0.5 * t * t) * s.a;
+    evaluate(jacobian_coefficients{0, 0, 0}, false);
+    for (int i = 0; i < ne; ++i) out[static_cast<std::size_t>(i)] = as.residual()(as.dof_of(i));
+  };
+  rows_at(0.0, g0);
+  std::vector<double> gp(kind.size()), gm(kind.size());
+  for (int k = 0; k < 2; ++k) {
+    const double h = k == 0 ? e : e / 2;
+    rows_at(h, gp);
+    rows_at(-h, gm);
+    d[k].resize(kind.size());
+    for (std::size_t i = 0; i < kind.size(); ++i) d[k][i] = (gp[i] - 2 * g0[i] + gm[i]) / (h * h);
+  }
+  s.u = u0;
+  evaluate(jacobian_coefficients{0, 0, 0}, false);
+  for (std::size_t i = 0; i < kind.size(); ++i)
+    if (kind[i] == 3) rhs[i] = -(4 * d[1][i] - d[0][i]) / 3;
+}
+
 /// Consistent initial derivatives at the zero step. The unknown of each free
 /// DOF is its acceleration if it has inertia (dF/da diagonal nonzero), else its
 /// velocity if it has viscosity (a first-order DOF, e.g. the series point of a
@@ -124,8 +219,14 @@ std::pair<std::vector<std::string>, std::vector<std::string>> apply_initial_cond
 /// J = M (inertial columns) + C (viscous columns) + I (algebraic columns).
 /// Without it the trapezoidal u-v relation of the Newmark family would carry
 /// an inconsistent start as an undamped oscillation of v.
+/// Index-3 constraint rows (mark_index3_multipliers) take part too: their
+/// multiplier's unknown is its value and their row the constraint's second
+/// derivative (constraint_accelerations), so the initial joint forces are the
+/// consistent ones; if that matrix is singular (redundant constraints), a warning
+/// is logged and they start as algebraic DOFs.
 /// `evaluate(c, want_jacobian)` evaluates the model at s into `as`. Returns
-/// the kind of each equation (1 inertial, 2 viscous, 0 algebraic), or an empty
+/// the kind of each equation (1 inertial, 2 viscous, 3 index-3 multiplier,
+/// 0 algebraic), or an empty
 /// vector when no consistent derivatives could be found (a warning is logged
 /// and the free DOFs start with zero accelerations).
 template <class Model, class Assembler, class Solver, class Evaluate>
@@ -172,54 +273,63 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
         }
       }
     }
-    std::vector<double> j(mvals.size(), 0.0);
-    for (int r = 0; r < ne; ++r)
-      for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
-        const int c = pat.col[static_cast<std::size_t>(q)];
-        const auto sq = static_cast<std::size_t>(q);
-        const char k = kind[static_cast<std::size_t>(c)];
-        j[sq] = k == 1 ? mvals[sq] : (k == 2 ? cvals[sq] : (r == c ? 1.0 : 0.0));
-      }
-    for (const auto& node : m.rotation_nodes()) {
-      const int e4 = as.equation_of(node.dofs[3]);
-      if (e4 < 0) continue;
-      Eigen::Vector4d q, qd, qdd;
-      for (int k = 0; k < 4; ++k) {
-        const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
-        q(k) = s.u(d);
-        qd(k) = s.v(d);
-        qdd(k) = s.a(d);
-      }
-      const double lq = q.norm(), g = q.dot(qd);
-      for (int qq = pat.row_ptr[static_cast<std::size_t>(e4)]; qq < pat.row_ptr[static_cast<std::size_t>(e4) + 1]; ++qq)
-        j[static_cast<std::size_t>(qq)] = 0.0;
-      for (int k = 0; k < 4; ++k) {
-        const int ec = as.equation_of(node.dofs[static_cast<std::size_t>(k)]);
-        if (ec >= 0) j[static_cast<std::size_t>(pat.find(e4, ec))] = q(k) / lq;
-      }
-      rhs[static_cast<std::size_t>(e4)] = -(q.dot(qdd) + qd.squaredNorm() - g * g / (lq * lq)) / lq;
+    // Index-3 constraint rows (multipliers, docs/joints.md): the multiplier's
+    // unknown is its value v, and its row becomes the constraint's second time
+    // derivative, G a + (dG/dt) v = 0, so that the initial multipliers and
+    // accelerations are consistent with the constraints.
+    std::vector<double> kvals;
+    const std::vector<double> rhs_plain = rhs;
+    if (std::find(kind.begin(), kind.end(), char{0}) != kind.end()) {
+      evaluate(jacobian_coefficients{1, 0, 0}, true);
+      kvals.assign(as.values().begin(), as.values().end());
+      if (mark_index3_multipliers(pat, mvals, cvals, kvals, kind))
+        constraint_accelerations(as, s, kind, rhs, evaluate);
     }
-    try {
-      solver.factorize(j);
-      ++stats.factorizations;
-      solver.solve(rhs);
-      bool finite = true;
-      for (double x : rhs) finite = finite && std::isfinite(x);
-      if (!finite) throw error(error_code::singular_matrix, "non-finite initial derivatives");
-      for (int i = 0; i < ne; ++i) {
-        const auto d = as.dof_of(i);
-        const double z = rhs[static_cast<std::size_t>(i)];
-        if (kind[static_cast<std::size_t>(i)] == 1) s.a(d) += z;
-        if (kind[static_cast<std::size_t>(i)] == 2) s.v(d) += z;
+    std::vector<double> rhs0 = rhs;
+    std::vector<double> j(mvals.size(), 0.0);
+    for (;;) {
+      for (int r = 0; r < ne; ++r)
+        for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
+          const int c = pat.col[static_cast<std::size_t>(q)];
+          const auto sq = static_cast<std::size_t>(q);
+          const char k = kind[static_cast<std::size_t>(c)];
+          if (kind[static_cast<std::size_t>(r)] == 3) j[sq] = k == 1 ? kvals[sq] : 0.0;
+          else j[sq] = k == 1 ? mvals[sq] : (k == 2 || k == 3 ? cvals[sq] : (r == c ? 1.0 : 0.0));
+        }
+      rhs = rhs0;
+      rotation_norm_rows(m, as, s, j, rhs);
+      try {
+        solver.factorize(j);
+        ++stats.factorizations;
+        solver.solve(rhs);
+        bool finite = true;
+        for (double x : rhs) finite = finite && std::isfinite(x);
+        if (!finite) throw error(error_code::singular_matrix, "non-finite initial derivatives");
+        for (int i = 0; i < ne; ++i) {
+          const auto d = as.dof_of(i);
+          const double z = rhs[static_cast<std::size_t>(i)];
+          if (kind[static_cast<std::size_t>(i)] == 1) s.a(d) += z;
+          if (kind[static_cast<std::size_t>(i)] == 2 || kind[static_cast<std::size_t>(i)] == 3) s.v(d) += z;
+        }
+        break;
+      } catch (const error& e) {
+        if (e.code() != error_code::singular_matrix) throw;
+        if (std::find(kind.begin(), kind.end(), char{3}) != kind.end()) {
+          // Redundant or unsupported constraints: start them as algebraic DOFs
+          // (multipliers at their initial values, met by Newton at the first step).
+          log.write("warning: no consistent initial multipliers: the constraint forces start at their initial "
+                    "values (" + std::string(e.what()) + ")");
+          std::replace(kind.begin(), kind.end(), char{3}, char{0});
+          rhs0 = rhs_plain;
+          continue;
+        }
+        std::string where =
+            e.dof() >= 0 && e.dof() < ne ? " (DOF '" + m.dof_name(as.dof_of(static_cast<int>(e.dof()))) + "')" : "";
+        log.write("warning: no consistent initial derivatives" + where +
+                  ": the run starts with zero initial accelerations on the free DOFs");
+        for (int i = 0; i < ne; ++i) s.a(as.dof_of(i)) = 0;
+        return {};
       }
-    } catch (const error& e) {
-      if (e.code() != error_code::singular_matrix) throw;
-      std::string where =
-          e.dof() >= 0 && e.dof() < ne ? " (DOF '" + m.dof_name(as.dof_of(static_cast<int>(e.dof()))) + "')" : "";
-      log.write("warning: no consistent initial derivatives" + where +
-                ": the run starts with zero initial accelerations on the free DOFs");
-      for (int i = 0; i < ne; ++i) s.a(as.dof_of(i)) = 0;
-      return {};
     }
     return kind;
   }

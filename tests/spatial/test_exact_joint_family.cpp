@@ -1,0 +1,435 @@
+// The exact joint family beyond SPH3X and REV3X (UNI3X, CYL3X, PRI3X, FIX3X,
+// PTL3X, PTP3X and the planar PIN2X), against closed forms:
+// - a body on a frictionless slider, wire or plane under constant loads moves with
+//   the constant acceleration of the free direction, (F . e) e / m (Newton's second
+//   law with ideal constraints, Goldstein, Classical Mechanics, 3rd ed., section 1.4),
+//   and the reactions are m a - F and minus the applied moment;
+// - a free rotation about a principal axis under a torque M turns by
+//   M t^2 / (2 J) (Euler's equations, Goldstein section 5.5);
+// - pendulums on a universal joint, on a welded pair of bodies and on a planar pin
+//   swing with the exact period 4 sqrt(I_O / (m g d)) K(sin(theta0 / 2))
+//   (Landau-Lifshitz, Mechanics, section 11);
+// and every constraint residual stays at round-off (index-3 constraints on positions).
+// The zero step starts the multipliers at the consistent joint forces: those of
+// Newton-Euler's equations at the initial state (Goldstein, section 5.5).
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "pradis/elements/library.hpp"
+#include "pradis/integrators/simulation.hpp"
+#include "pradis/spatial/node_state.hpp"
+#include "spatial_test_support.hpp"
+
+using namespace pradis;
+using namespace pradis::elements;
+using namespace pradis::spatial;
+using pradis_spatial_tests::tight_newton;
+
+namespace {
+constexpr double pi = std::numbers::pi;
+constexpr double g = 9.81;
+using family_model =
+    model<rigid_body, exact_spherical_joint, exact_revolute_joint, exact_universal_joint, exact_cylindrical_joint, exact_prismatic_joint,
+          exact_fixed_joint, exact_point_on_line, exact_point_on_plane, spatial_force, spatial_torque, body_torque,
+          initial_rotation, initial_displacement>;
+
+/// A rigid body with principal inertias j (body axes along the global axes at t = 0).
+struct body {
+  std::vector<dof> x;
+  rotation_node r;
+  body(family_model& m, const std::string& name, double mass, const vec3& j) {
+    x = m.add_dofs(3, name + ".x");
+    r = m.add_rotation_node(name + ".r");
+    m.add<rigid_body>(name, {mass, j.x(), j.y(), j.z(), 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
+  }
+  vec3 position(const auto& s) const { return {s.u(x[0]), s.u(x[1]), s.u(x[2])}; }
+};
+
+/// Period from the downward zero crossings of an angle, interpolated linearly.
+struct crossings {
+  std::vector<double> at;
+  double prev_t = 0, prev_a = 0;
+  bool started = false;
+  void add(double t, double a) {
+    if (started && prev_a > 0 && a <= 0) at.push_back(prev_t + (t - prev_t) * prev_a / (prev_a - a));
+    prev_t = t;
+    prev_a = a;
+    started = true;
+  }
+  double period() const { return (at.back() - at.front()) / static_cast<double>(at.size() - 1); }
+};
+
+/// The exact period of a compound pendulum (I_O about the pivot, m g d) from theta0.
+double pendulum_period(double i_o, double mgd, double theta0) {
+  return 4 * std::sqrt(i_o / mgd) * std::comp_ellint_1(std::sin(theta0 / 2));
+}
+
+vec3 work3(std::span<const double> w, int k) { return {w[k], w[k + 1], w[k + 2]}; }
+}  // namespace
+
+TEST_SUITE("spatial/exact joint family") {
+  TEST_CASE("PRI3X: a body slides down an inclined axis with g sin(alpha); it does not turn, and the joint carries "
+            "the rest") {
+    const double mass = 2.0, alpha = 30 * pi / 180, end = 1.0, h = 1e-3;
+    const vec3 e(std::cos(alpha), 0, std::sin(alpha)), load(0, 1.5, -mass * g), torque(0.3, -0.2, 0.5);
+    family_model m;
+    const body b(m, "body", mass, {0.1, 0.2, 0.3});
+    const dof G = m.ground();
+    const auto slider = m.add<exact_prismatic_joint>(
+        "slider", {{}, e.x(), e.y(), e.z(), 0, 1, 0, e.x(), e.y(), e.z(), 0, 1, 0}, G, G, G, G, G, G, b.x[0], b.x[1],
+        b.x[2], b.r);
+    m.add<spatial_force>("loads", {load.x(), load.y(), load.z(), 0, 0, 0, 0, 0}, b.x[0], b.x[1], b.x[2]);
+    m.add<spatial_torque>("torque", {torque.x(), torque.y(), torque.z(), 0, 0, 0, 0, 0}, b.r);
+    simulation<family_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    double off_axis = 0, turn = 0;
+    sim.on_output([&](const auto& s) {
+      off_axis = std::max(off_axis, m.work(slider)[0]);
+      turn = std::max(turn, (node_rotation(s, b.r) - mat3::Identity()).norm());
+    });
+    sim.run({.end = end, .out = h, .smax = h, .newton = tight_newton});
+    const double a = load.dot(e) / mass;  // = -g sin(alpha)
+    const vec3 expected = 0.5 * a * end * end * e;
+    CAPTURE(b.position(sim).transpose());
+    CHECK((b.position(sim) - expected).norm() < 1e-9 * expected.norm());
+    CHECK(m.work(slider)[9] == doctest::Approx(0.5 * a * end * end).epsilon(1e-9));
+    CHECK(off_axis < 1e-12);
+    CHECK(turn < 1e-12);
+    CHECK(std::abs(m.work(slider)[4]) + std::abs(m.work(slider)[5]) < 1e-12);
+    // Reactions on the body: the force m a - F (perpendicular to the axis), the moment -M.
+    CHECK((work3(m.work(slider), 1) - (mass * a * e - load)).norm() < 1e-6);
+    CHECK((work3(m.work(slider), 6) + torque).norm() < 1e-6);
+  }
+
+  TEST_CASE("CYL3X: a body falls along a vertical axis and spins about it under a torque; lateral loads are "
+            "carried") {
+    const double mass = 1.5, jzz = 0.04, end = 0.4, h = 1e-3;
+    const vec3 load(0, 0.7, -mass * g), torque(0.3, 0, 0.8);
+    family_model m;
+    const body b(m, "body", mass, {0.02, 0.02, jzz});
+    const dof G = m.ground();
+    const auto joint = m.add<exact_cylindrical_joint>("cyl", {{}, 0, 0, 1, 0, 0, 1}, G, G, G, G, G, G, b.x[0],
+                                                      b.x[1], b.x[2], b.r);
+    m.add<spatial_force>("loads", {load.x(), load.y(), load.z(), 0, 0, 0, 0, 0}, b.x[0], b.x[1], b.x[2]);
+    m.add<spatial_torque>("torque", {torque.x(), torque.y(), torque.z(), 0, 0, 0, 0, 0}, b.r);
+    simulation<family_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    double theta = 0, prev = 0, off_axis = 0, tilt = 0;
+    sim.on_output([&](const auto& s) {
+      const mat3 rot = node_rotation(s, b.r);
+      const double a = std::atan2(rot(1, 0), rot(0, 0));
+      theta += std::remainder(a - prev, 2 * pi);
+      prev = a;
+      off_axis = std::max(off_axis, m.work(joint)[0]);
+      tilt = std::max({tilt, std::abs(rot(0, 2)) + std::abs(rot(1, 2)), m.work(joint)[4]});
+    });
+    sim.run({.end = end, .out = h, .smax = h, .newton = tight_newton});
+    const double z = -0.5 * g * end * end;
+    CHECK(sim.u(b.x[2]) == doctest::Approx(z).epsilon(1e-9));
+    CHECK(m.work(joint)[8] == doctest::Approx(z).epsilon(1e-9));
+    // The quaternion is not quadratic in time: the scheme's O((w h)^2) error (as for REV3X).
+    CHECK(theta == doctest::Approx(torque.z() * end * end / (2 * jzz)).epsilon(2e-5));
+    CHECK(off_axis < 1e-12);
+    CHECK(tilt < 1e-12);
+    CHECK((work3(m.work(joint), 1) - vec3(0, -load.y(), 0)).norm() < 1e-6);
+    CHECK((work3(m.work(joint), 5) - vec3(-torque.x(), 0, 0)).norm() < 1e-6);
+  }
+
+  TEST_CASE("UNI3X: a pendulum on a Cardan joint swings with the exact period and does not spin under a torque "
+            "about its own axis") {
+    const double mass = 1.0, jxx = 0.02, d = 0.5, theta0 = 30 * pi / 180, h = 1e-3, spin_torque = 0.3;
+    const double exact = pendulum_period(jxx + mass * d * d, mass * g * d, theta0);
+    family_model m;
+    const body b(m, "body", mass, {jxx, 0.015, 0.01});
+    const dof G = m.ground();
+    // Cross axis X fixed in the ground, cross axis Y fixed in the body.
+    const auto joint = m.add<exact_universal_joint>("cardan", {{0, 0, 0, 0, 0, 0, 0, 0, -d, 0, 0, d}, 1, 0, 0, 0, 1, 0},
+                                                    G, G, G, G, G, G, b.x[0], b.x[1], b.x[2], b.r);
+    m.add<spatial_force>("gravity", {0, 0, -mass * g, 0, 0, 0, 0, 0}, b.x[0], b.x[1], b.x[2]);
+    m.add<body_torque>("spin", {0, 0, spin_torque, 0, 0, 0, 0, 0}, b.r);
+    m.add<initial_rotation>("start", {1, 0, 0, theta0 * 180 / pi, 0, 0, 0}, b.r);
+    m.add<initial_displacement>("y0", {d * std::sin(theta0)}, b.x[1]);
+    m.add<initial_displacement>("z0", {d * (1 - std::cos(theta0))}, b.x[2]);
+    simulation<family_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    crossings c;
+    double gap = 0, right_angle = 0, body_x = 0, moment_error = 0;
+    sim.on_output([&](const auto& s) {
+      const mat3 rot = node_rotation(s, b.r);
+      c.add(s.time(), std::atan2(rot(2, 1), rot(1, 1)));
+      gap = std::max(gap, m.work(joint)[0]);
+      right_angle = std::max(right_angle, std::abs(m.work(joint)[4]));
+      body_x = std::max(body_x, std::abs(rot(1, 0)) + std::abs(rot(2, 0)));
+      // The joint holds the body against the torque about its own Z axis.
+      moment_error = std::max(moment_error, (work3(m.work(joint), 5) + spin_torque * rot.col(2)).norm());
+    });
+    sim.run({.end = 1.3 * exact, .out = h, .smax = h, .newton = tight_newton});
+    REQUIRE(c.at.size() >= 2);
+    CAPTURE(c.period());
+    CAPTURE(exact);
+    CHECK(std::abs(c.period() / exact - 1) < 2e-5);
+    CHECK(gap < 1e-12);
+    CHECK(right_angle < 1e-12);
+    CHECK(body_x < 1e-12);
+    CHECK(moment_error < 1e-6);
+  }
+
+  TEST_CASE("FIX3X: two welded bodies on an exact hinge swing as one compound pendulum") {
+    // Body a (centre at the pivot) on REV3X about X; body b welded 0.4 below it.
+    // I_O = Jxx_a + Jxx_b + m_b d^2, m g d = m_b g d.
+    const double ma = 1.0, mb = 0.5, jxa = 0.02, jxb = 0.01, d = 0.4, theta0 = 30 * pi / 180, h = 1e-3;
+    const double exact = pendulum_period(jxa + jxb + mb * d * d, mb * g * d, theta0);
+    family_model m;
+    const body a(m, "a", ma, {jxa, 0.02, 0.01});
+    const body b(m, "b", mb, {jxb, 0.008, 0.004});
+    const dof G = m.ground();
+    m.add<exact_revolute_joint>("hinge", {{}, 1, 0, 0, 1, 0, 0}, G, G, G, G, G, G, a.x[0], a.x[1], a.x[2], a.r);
+    const auto weld =
+        m.add<exact_fixed_joint>("weld", {{0, 0, 0, 0, 0, -d / 2, 0, 0, -d, 0, 0, d / 2}, 0, 0, 1, 1, 0, 0, 0, 0, 1, 1, 0, 0},
+                                 a.x[0], a.x[1], a.x[2], a.r, b.x[0], b.x[1], b.x[2], b.r);
+    m.add<spatial_force>("gravity", {0, 0, -mb * g, 0, 0, 0, 0, 0}, b.x[0], b.x[1], b.x[2]);
+    m.add<initial_rotation>("start_a", {1, 0, 0, theta0 * 180 / pi, 0, 0, 0}, a.r);
+    m.add<initial_rotation>("start_b", {1, 0, 0, theta0 * 180 / pi, 0, 0, 0}, b.r);
+    m.add<initial_displacement>("y0", {d * std::sin(theta0)}, b.x[1]);
+    m.add<initial_displacement>("z0", {d * (1 - std::cos(theta0))}, b.x[2]);
+    simulation<family_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    crossings c;
+    double gap = 0, angles = 0, relative = 0;
+    sim.on_output([&](const auto& s) {
+      const mat3 ra = node_rotation(s, a.r), rb = node_rotation(s, b.r);
+      c.add(s.time(), std::atan2(rb(2, 1), rb(1, 1)));
+      gap = std::max(gap, m.work(weld)[0]);
+      angles = std::max(angles, std::abs(m.work(weld)[4]) + std::abs(m.work(weld)[5]));
+      relative = std::max(relative, (ra.transpose() * rb - mat3::Identity()).norm());
+    });
+    sim.run({.end = 1.3 * exact, .out = h, .smax = h, .newton = tight_newton});
+    REQUIRE(c.at.size() >= 2);
+    CAPTURE(c.period());
+    CAPTURE(exact);
+    CHECK(std::abs(c.period() / exact - 1) < 2e-5);
+    CHECK(gap < 1e-12);
+    CHECK(angles < 1e-12);
+    CHECK(relative < 1e-12);
+  }
+
+  TEST_CASE("PTL3X: a bead slides down an inclined wire with g sin(alpha) and spins freely under a torque") {
+    const double mass = 1.2, jzz = 0.03, alpha = 40 * pi / 180, end = 0.5, h = 1e-3;
+    const vec3 e(std::cos(alpha), 0, std::sin(alpha)), load(0, 0, -mass * g);
+    family_model m;
+    const body b(m, "bead", mass, {0.01, 0.02, jzz});
+    const dof G = m.ground();
+    const auto wire = m.add<exact_point_on_line>("wire", {{}, e.x(), e.y(), e.z()}, G, G, G, G, G, G, b.x[0], b.x[1],
+                                                 b.x[2], b.r);
+    m.add<spatial_force>("gravity", {load.x(), load.y(), load.z(), 0, 0, 0, 0, 0}, b.x[0], b.x[1], b.x[2]);
+    m.add<spatial_torque>("torque", {0, 0, 0.2, 0, 0, 0, 0, 0}, b.r);
+    simulation<family_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    double theta = 0, prev = 0, off_line = 0;
+    sim.on_output([&](const auto& s) {
+      const mat3 rot = node_rotation(s, b.r);
+      const double a = std::atan2(rot(1, 0), rot(0, 0));
+      theta += std::remainder(a - prev, 2 * pi);
+      prev = a;
+      off_line = std::max(off_line, m.work(wire)[0]);
+    });
+    sim.run({.end = end, .out = h, .smax = h, .newton = tight_newton});
+    const double a = load.dot(e) / mass;
+    const vec3 expected = 0.5 * a * end * end * e;
+    CHECK((b.position(sim) - expected).norm() < 1e-9 * expected.norm());
+    CHECK(m.work(wire)[4] == doctest::Approx(0.5 * a * end * end).epsilon(1e-9));
+    CHECK(theta == doctest::Approx(0.2 * end * end / (2 * jzz)).epsilon(2e-5));
+    CHECK(off_line < 1e-12);
+    CHECK((work3(m.work(wire), 1) - (mass * a * e - load)).norm() < 1e-6);
+  }
+
+  TEST_CASE("PTP3X: a body slides on an inclined plane with the in-plane part of its loads; the normal force is "
+            "m g cos(alpha)") {
+    const double mass = 2.0, alpha = 25 * pi / 180, end = 0.5, h = 1e-3;
+    const vec3 n(0, -std::sin(alpha), std::cos(alpha)), load(1.0, 0, -mass * g);
+    family_model m;
+    const body b(m, "block", mass, {0.1, 0.1, 0.1});
+    const dof G = m.ground();
+    const auto plane = m.add<exact_point_on_plane>("plane", {{}, n.x(), n.y(), n.z()}, G, G, G, G, G, G, b.x[0],
+                                                   b.x[1], b.x[2], b.r);
+    m.add<spatial_force>("loads", {load.x(), load.y(), load.z(), 0, 0, 0, 0, 0}, b.x[0], b.x[1], b.x[2]);
+    simulation<family_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    double off_plane = 0;
+    sim.on_output([&](const auto&) { off_plane = std::max(off_plane, std::abs(m.work(plane)[0])); });
+    sim.run({.end = end, .out = h, .smax = h, .newton = tight_newton});
+    const vec3 acc = (load - load.dot(n) * n) / mass;
+    const vec3 expected = 0.5 * acc * end * end;
+    CHECK((b.position(sim) - expected).norm() < 1e-9 * expected.norm());
+    CHECK(off_plane < 1e-12);
+    CHECK((work3(m.work(plane), 1) - mass * g * std::cos(alpha) * n).norm() < 1e-6);
+  }
+
+  TEST_CASE("PIN2X: a planar compound pendulum at 60 degrees swings with the exact period, the pin closed") {
+    using planar_model = model<planar_inertia, planar_pin_joint, constant_force, initial_displacement>;
+    const double mass = 1.0, j = 0.02, d = 0.5, theta0 = 60 * pi / 180, h = 1e-3;
+    const double exact = pendulum_period(j + mass * d * d, mass * g * d, theta0);
+    planar_model m;
+    const dof x = m.add_dof("x"), y = m.add_dof("y"), th = m.add_dof("theta"), G = m.ground();
+    m.add<planar_inertia>("body", {mass, j}, x, y, th);
+    // The centre hangs d below the pin at rotation 0; the pin point is d above the centre.
+    const auto pin = m.add<planar_pin_joint>("pin", {0, 0, 0, 0, 0, -d, 0, d}, G, G, G, x, y, th);
+    m.add<constant_force>("weight", {-mass * g}, y);
+    m.add<initial_displacement>("theta0", {theta0}, th);
+    m.add<initial_displacement>("x0", {d * std::sin(theta0)}, x);
+    m.add<initial_displacement>("y0", {d * (1 - std::cos(theta0))}, y);
+    simulation<planar_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    crossings c;
+    double gap = 0;
+    sim.on_output([&](const auto& s) {
+      c.add(s.time(), s.u(th));
+      gap = std::max(gap, m.work(pin)[0]);
+    });
+    sim.run({.end = 1.3 * exact, .out = h, .smax = h, .newton = tight_newton});
+    REQUIRE(c.at.size() >= 2);
+    CAPTURE(c.period());
+    CAPTURE(exact);
+    CHECK(std::abs(c.period() / exact - 1) < 2e-5);
+    CHECK(gap < 1e-12);
+  }
+
+  TEST_CASE("zero step: the pin force of a pendulum released at rest starts at its exact value") {
+    // At rest at theta0: theta'' = -m g d sin(theta0) / I_O; the centre (d sin, -d cos)
+    // accelerates tangentially by theta'' d (cos, sin); the pin force on the body is
+    // m a_c - m g_vec.
+    using planar_model = model<planar_inertia, planar_pin_joint, constant_force, initial_displacement>;
+    const double mass = 1.3, j = 0.02, d = 0.5, theta0 = 60 * pi / 180;
+    planar_model m;
+    const dof x = m.add_dof("x"), y = m.add_dof("y"), th = m.add_dof("theta"), G = m.ground();
+    m.add<planar_inertia>("body", {mass, j}, x, y, th);
+    const auto pin = m.add<planar_pin_joint>("pin", {0, 0, 0, 0, 0, -d, 0, d}, G, G, G, x, y, th);
+    m.add<constant_force>("weight", {-mass * g}, y);
+    m.add<initial_displacement>("theta0", {theta0}, th);
+    m.add<initial_displacement>("x0", {d * std::sin(theta0)}, x);
+    m.add<initial_displacement>("y0", {d * (1 - std::cos(theta0))}, y);
+    simulation<planar_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    double fx0 = NAN, fy0 = NAN, acc0 = NAN;
+    sim.on_output([&](const auto& s) {
+      if (s.time() != 0.0) return;
+      fx0 = m.work(pin)[1];
+      fy0 = m.work(pin)[2];
+      acc0 = s.a(th);
+    });
+    sim.run({.end = 1e-3, .out = 1e-3, .smax = 1e-3, .newton = tight_newton});
+    const double alpha = -mass * g * d * std::sin(theta0) / (j + mass * d * d);
+    CHECK(acc0 == doctest::Approx(alpha).epsilon(1e-9));
+    CHECK(fx0 == doctest::Approx(mass * alpha * d * std::cos(theta0)).epsilon(1e-7));
+    CHECK(fy0 == doctest::Approx(mass * alpha * d * std::sin(theta0) + mass * g).epsilon(1e-7));
+  }
+
+  TEST_CASE("zero step: the joint force of a spinning heavy top starts at its Newton-Euler value") {
+    // Euler's equations about the pivot, I_O w' + w x I_O w = c x m g_vec, give w';
+    // the centre accelerates by w' x c + w x (w x c); the joint force on the top is
+    // m a_c - m g_vec. The spin makes the velocity term (dG/dt) v of the constraint
+    // matter: without it the force would be off by m |w x (w x c)|.
+    const double mass = 1.0, l = 0.1, j1 = 0.01, j3 = 0.02, w3 = 30.0, theta0 = 30 * pi / 180;
+    family_model m;
+    const body top(m, "top", mass, {j1, j1, j3});
+    const dof G = m.ground();
+    const vec3 axis0(0, -std::sin(theta0), std::cos(theta0)), c = l * axis0, w = w3 * axis0, gv(0, 0, -g);
+    const auto joint = m.add<exact_spherical_joint>(
+        "tip", {{0, 0, 0, 0, 0, 0, c.x(), c.y(), c.z(), 0, 0, -l}}, G, G, G, G, G, G, top.x[0], top.x[1], top.x[2],
+        top.r);
+    m.add<spatial_force>("gravity", {0, 0, -mass * g, 0, 0, 0, 0, 0}, top.x[0], top.x[1], top.x[2]);
+    m.add<initial_rotation>("start", {1, 0, 0, theta0 * 180 / pi, w.x(), w.y(), w.z()}, top.r);
+    simulation<family_model, alpha_family> sim(m, alpha_family(newmark{}));
+    vec3 f0 = vec3::Constant(NAN);
+    sim.on_output([&](const auto& s) {
+      if (s.time() == 0.0) f0 = work3(m.work(joint), 1);
+    });
+    sim.run({.end = 1e-4, .out = 1e-4, .smax = 1e-4, .newton = tight_newton});
+    const mat3 rot = Eigen::AngleAxisd(theta0, vec3::UnitX()).toRotationMatrix();
+    const mat3 io = rot * vec3(j1, j1, j3).asDiagonal() * rot.transpose() +
+                    mass * (c.squaredNorm() * mat3::Identity() - c * c.transpose());
+    const vec3 wd = io.inverse() * (c.cross(mass * gv) - w.cross(io * w));
+    const vec3 expected = mass * (wd.cross(c) + w.cross(w.cross(c))) - mass * gv;
+    CAPTURE(f0.transpose());
+    CAPTURE(expected.transpose());
+    CHECK((f0 - expected).norm() < 1e-6 * expected.norm());
+  }
+
+  TEST_CASE("bad parameters of the exact joint family stop the run with code 100 naming the joint") {
+    struct bad_case {
+      std::string type, message;
+      std::function<void(family_model&, const body&, dof)> add;
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<bad_case> cases{
+        {"UNI3X", "cross axis e_b",
+         [](family_model& m, const body& b, dof G) {
+           m.add<exact_universal_joint>("joint", {{}, 1, 0, 0, 0, 0, 0}, G, G, G, G, G, G, b.x[0], b.x[1], b.x[2], b.r);
+         }},
+        {"CYL3X", "not finite",
+         [nan](family_model& m, const body& b, dof G) {
+           m.add<exact_cylindrical_joint>("joint", {{0, 0, 0, 0, 0, 0, 0, 0, nan, 0, 0, 0}, 0, 0, 1, 0, 0, 1}, G, G, G,
+                                          G, G, G, b.x[0], b.x[1], b.x[2], b.r);
+         }},
+        {"CYL3X", "axis e_a",
+         [](family_model& m, const body& b, dof G) {
+           m.add<exact_cylindrical_joint>("joint", {{}, 0, 0, 0, 0, 0, 1}, G, G, G, G, G, G, b.x[0], b.x[1], b.x[2],
+                                          b.r);
+         }},
+        {"PRI3X", "reference vector t_a is parallel to the axis e_a",
+         [](family_model& m, const body& b, dof G) {
+           m.add<exact_prismatic_joint>("joint", {{}, 0, 0, 1, 0, 0, 2, 0, 0, 1, 1, 0, 0}, G, G, G, G, G, G, b.x[0],
+                                        b.x[1], b.x[2], b.r);
+         }},
+        {"FIX3X", "t_b",
+         [](family_model& m, const body& b, dof G) {
+           m.add<exact_fixed_joint>("joint", {{}, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0}, G, G, G, G, G, G, b.x[0], b.x[1],
+                                    b.x[2], b.r);
+         }},
+        {"PTL3X", "direction e",
+         [](family_model& m, const body& b, dof G) {
+           m.add<exact_point_on_line>("joint", {{}, 0, 0, 0}, G, G, G, G, G, G, b.x[0], b.x[1], b.x[2], b.r);
+         }},
+        {"PTP3X", "normal n",
+         [nan](family_model& m, const body& b, dof G) {
+           m.add<exact_point_on_plane>("joint", {{}, 0, nan, 1}, G, G, G, G, G, G, b.x[0], b.x[1], b.x[2], b.r);
+         }},
+    };
+    for (const bad_case& c : cases) {
+      CAPTURE(c.type);
+      CAPTURE(c.message);
+      family_model m;
+      const body b(m, "body", 1.0, {1, 1, 1});
+      c.add(m, b, m.ground());
+      simulation sim(m);
+      try {
+        sim.run({.end = 0.01, .smax = 1e-3});
+        FAIL("must throw");
+      } catch (const error& e) {
+        CHECK(e.code() == error_code::invalid_parameter);
+        CHECK(e.element_type() == c.type);
+        CHECK(e.instance() == "joint");
+        CHECK(std::string(e.what()).find(c.message) != std::string::npos);
+      }
+    }
+  }
+
+  TEST_CASE("PIN2X with a non-finite parameter stops the run with code 100 naming the pin") {
+    using planar_model = model<planar_inertia, planar_pin_joint>;
+    planar_model m;
+    const dof x = m.add_dof("x"), y = m.add_dof("y"), th = m.add_dof("theta"), G = m.ground();
+    m.add<planar_inertia>("body", {1.0, 0.1}, x, y, th);
+    m.add<planar_pin_joint>("pin", {0, 0, 0, 0, 0, std::numeric_limits<double>::infinity(), 0, 0}, G, G, G, x, y, th);
+    simulation sim(m);
+    try {
+      sim.run({.end = 0.01, .smax = 1e-3});
+      FAIL("must throw");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::invalid_parameter);
+      CHECK(e.element_type() == "PIN2X");
+      CHECK(e.instance() == "pin");
+      CHECK(std::string(e.what()).find("not finite") != std::string::npos);
+    }
+  }
+}
