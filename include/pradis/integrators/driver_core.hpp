@@ -126,6 +126,9 @@ class driver_core {
     const std::vector<char> kind = initial_derivatives(
         m_, asm_, solver, s_, rhs_, stats_, log_, [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
     warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);
+    index3_.assign(static_cast<std::size_t>(m_.dof_count()), 0);
+    for (int i = 0; i < static_cast<int>(kind.size()); ++i)
+      if (kind[static_cast<std::size_t>(i)] == 3) index3_[static_cast<std::size_t>(asm_.dof_of(i))] = 1;
   }
   /// The end of the zero step: the pseudo-acceleration starts at the consistent
   /// acceleration; flows and work vectors at t0 (no Jacobian); the zero step
@@ -162,6 +165,11 @@ class driver_core {
   diagnostics log_;
   global_state s_, s0_;
   std::vector<char> prescribed_;
+  /// Per DOF: the multiplier of an index-3 constraint (found at the zero step,
+  /// mark_index3_multipliers). The local error tests leave these out, as is
+  /// necessary for index-3 multipliers (they are determined by the positions,
+  /// not by an integrated derivative; Hairer and Wanner, Solving ODEs II, VII.3).
+  std::vector<char> index3_;
   std::vector<double> rhs_;
   run_options opt_{};
   run_statistics stats_{};

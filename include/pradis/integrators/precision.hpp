@@ -104,4 +104,10 @@ inline std::string undamped_constraint_note(std::string_view scheme) {
          "to step; HHT or GALPHA damp the alternation (the motion is not affected)";
 }
 
+/// The warning of bdf_simulation on a model with index-3 constraints.
+inline constexpr std::string_view bdf_index3_warning =
+    "warning: the model has index-3 constraints (exact joints such as LINKX, SPH3X, REV3X): the BDF corrector "
+    "converges poorly on them (many step cuts, joint gaps at the tolerance); use pradis::simulation with HHT or "
+    "GALPHA under error control (docs/joints.md)";
+
 }  // namespace pradis::detail

@@ -57,7 +57,7 @@ class simulation;
 template <class... Es, Integrator Scheme, LinearSolver Solver>
 class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<model<Es...>> {
   using core = detail::driver_core<model<Es...>>;
-  using core::asm_, core::log_, core::m_, core::opt_, core::prescribed_, core::recommended_, core::rhs_, core::s0_,
+  using core::asm_, core::index3_, core::log_, core::m_, core::opt_, core::prescribed_, core::recommended_, core::rhs_, core::s0_,
       core::s_, core::started_, core::stats_, core::t_, core::last_failure_;
   using core::bad_dof, core::checked, core::commit, core::context_for, core::evaluate, core::for_each_instance,
       core::new_integration, core::raise;
@@ -343,7 +343,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   /// CONTROL; throws step_too_small when the step needed is below SMIN, naming
   /// the DOF and the time.
   bool error_accepts(double h) {
-    const error_test e = local_error_test(scheme_, asm_, s_, s0_, a_prev_, h_prev_, h, opt_, m_.scales());
+    const error_test e = local_error_test(scheme_, asm_, s_, s0_, a_prev_, h_prev_, h, opt_, m_.scales(), index3_);
     h_error_ = e.h_next;
     stats_.limiting_dof = e.worst;
     if (e.passed) return true;
@@ -353,7 +353,11 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
       raise(error(error_code::step_too_small,
                   "SMIN cannot reach the requested accuracy: local error " + num(e.worst_error) +
                       " above tolerance " + num(e.worst_tolerance) + " on DOF '" + m_.dof_name(e.worst) +
-                      "' at t = " + num(t_) + " with step " + num(h),
+                      "' at t = " + num(t_) + " with step " + num(h) +
+                      (newton_.has_multipliers() && detail::undamped(scheme_)
+                           ? " (the model has constraint multipliers and " + std::string(scheme_label()) +
+                                 " does not damp their alternation, which the error estimate sees: use HHT or GALPHA)"
+                           : std::string()),
                   {}, {}, e.worst));
     }
     return false;

@@ -54,6 +54,7 @@
 #include "pradis/integrators/failures.hpp"
 #include "pradis/integrators/initialisation.hpp"
 #include "pradis/integrators/options.hpp"
+#include "pradis/integrators/precision.hpp"
 #include "pradis/integrators/step_control.hpp"
 #include "pradis/linalg/ordering.hpp"
 #include "pradis/linalg/sparse_lu.hpp"
@@ -72,7 +73,7 @@ class bdf_simulation;
 template <class... Es, LinearSolver Solver>
 class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<Es...>> {
   using core = detail::driver_core<model<Es...>>;
-  using core::asm_, core::log_, core::m_, core::opt_, core::prescribed_, core::recommended_, core::rhs_, core::s0_,
+  using core::asm_, core::index3_, core::log_, core::m_, core::opt_, core::prescribed_, core::recommended_, core::rhs_, core::s0_,
       core::s_, core::started_, core::stats_, core::t_, core::last_failure_;
   using core::bad_dof, core::checked, core::commit, core::context_for, core::evaluate, core::for_each_instance,
       core::new_integration, core::raise;
@@ -200,6 +201,8 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   /// derivatives (initialisation.hpp), flows at t0.
   void zero_step() {
     this->start_zero_step(solver_, [&] { build(); });
+    if (std::find(index3_.begin(), index3_.end(), char{1}) != index3_.end())
+      log_.write(std::string(detail::bdf_index3_warning));
     jac_valid_ = false;  // the solver holds the factorisation of the initial-derivative matrix
     this->finish_zero_step();
     notify();
@@ -220,7 +223,9 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
 
   // ---- the BDF steps --------------------------------------------------------
   /// The error weights 1 / (DRLTX |x| + DABSX s) of the displacements and
-  /// velocities of the free DOFs at the current state.
+  /// velocities of the free DOFs at the current state; zero for the multipliers
+  /// of index-3 constraints (driver_core::index3_), which the error and
+  /// corrector tests leave out.
   void set_weights() {
     const int ne = asm_.equations();
     const double dabsx = effective_dabsx(opt_);
@@ -228,8 +233,9 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     for (int i = 0; i < ne; ++i) {
       const auto d = asm_.dof_of(i);
       const double s = m_.scales()[static_cast<std::size_t>(d)].potential;
-      w_(i) = 1 / (opt_.drltx * std::abs(s_.u(d)) + dabsx * s);
-      w_(ne + i) = 1 / (opt_.drltx * std::abs(s_.v(d)) + dabsx * s);
+      const bool skip = static_cast<std::size_t>(d) < index3_.size() && index3_[static_cast<std::size_t>(d)];
+      w_(i) = skip ? 0.0 : 1 / (opt_.drltx * std::abs(s_.u(d)) + dabsx * s);
+      w_(ne + i) = skip ? 0.0 : 1 / (opt_.drltx * std::abs(s_.v(d)) + dabsx * s);
     }
   }
   /// Starts the history at order 1 from the current state, with IDA's first
