@@ -226,8 +226,9 @@ TEST_SUITE("lang/language") {
     // examples/models/slider_crank.prd: crank r = 0.1 about the origin, rod l = 0.3,
     // slider on the X axis; slider x = r cos(phi) + sqrt(l^2 - r^2 sin(phi)^2) (the
     // triangle of crank, rod and axis); no gravity or friction, so the kinetic
-    // energy equals the work M phi of the torque (energy theorem; HHT's numerical
-    // dissipation at these well-resolved frequencies stays below 1e-5 of it).
+    // energy equals the work M phi of the torque (energy theorem), here to the
+    // scheme's O(h^2) error: measured 1.9e-5 of M phi at h = 1e-4 and 1.2e-4 at
+    // h = 2.5e-4, alike under NEWMARK (no numerical dissipation) and HHT.
     auto s = std::make_unique<lang::session>(lang::parse_file((lang_test::models_dir() / "slider_crank.prd").string()));
     s->run({.write_files = false});
     const auto& t = s->results();
@@ -235,7 +236,7 @@ TEST_SUITE("lang/language") {
                       vs = column(t, "Slider speed"), cvx = column(t, "Crank vx"), cvy = column(t, "Crank vy"),
                       rvx = column(t, "Rod vx"), rvy = column(t, "Rod vy"), rw = column(t, "Rod speed"),
                       gap = column(t, "Wrist gap");
-    const double r = 0.1, l = 0.3, torque = 2;
+    const double r = 0.1, l = 0.3, torque = 0.5;
     double kin = 0, energy = 0, worst_gap = 0;
     for (std::size_t k = 0; k < t.rows(); ++k) {
       const double p = t.at(k, phi), sp = std::sin(p);
@@ -247,9 +248,9 @@ TEST_SUITE("lang/language") {
       energy = std::max(energy, std::abs(e - torque * p) / std::max(1.0, torque * p));
       worst_gap = std::max(worst_gap, t.at(k, gap));
     }
-    CHECK(t.at(t.rows() - 1, phi) > 2 * 3.141592653589793);  // more than one turn
+    CHECK(t.at(t.rows() - 1, phi) > 4 * 3.141592653589793);  // more than two turns
     CHECK(kin < 1e-12);
-    CHECK(energy < 1e-5);
+    CHECK(energy < 4e-5);
     CHECK(worst_gap < 1e-12);
   }
 
