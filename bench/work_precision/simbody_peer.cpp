@@ -1,4 +1,4 @@
-// Simbody models of the work-precision problems top and chain (simbody_peer.h),
+// Simbody models of the work-precision problems top, topx and chain (simbody_peer.h),
 // compiled only when Simbody is found (PRADIS_WP_SIMBODY), as a module that
 // work_precision loads at run time.
 //
@@ -120,6 +120,22 @@ result top(integrator in, double accuracy, double t_end, const top_parameters& p
                    [&](const State& e, std::vector<double>& z) { rotation_state(e, b, z); });
 }
 
+result top_exact(integrator in, double accuracy, double t_end, const top_parameters& p) {
+  MultibodySystem sys;
+  SimbodyMatterSubsystem matter(sys);
+  GeneralForceSubsystem forces(sys);
+  Force::UniformGravity gravity(forces, matter, Vec3(0, 0, -p.g));
+  // Body frame at the centre of mass; the Ball's outboard frame at the tip (0, 0, -l).
+  const Body::Rigid body(MassProperties(p.m, Vec3(0), Inertia(p.j1, p.j1, p.j3)));
+  MobilizedBody::Ball b(matter.updGround(), Transform(), body, Transform(Vec3(0, 0, -p.l)));
+  State s = sys.realizeTopology();
+  const Rotation tilt(p.theta0, XAxis);
+  b.setQToFitRotation(s, tilt);
+  b.setUToFitAngularVelocity(s, p.w3 * (tilt * Vec3(0, 0, 1)));  // omega_b = (0, 0, w3)
+  return integrate(in, accuracy, t_end, sys, s,
+                   [&](const State& e, std::vector<double>& z) { rotation_state(e, b, z); });
+}
+
 result chain(integrator in, double accuracy, double t_end, int n, double l, double m, double g) {
   MultibodySystem sys;
   SimbodyMatterSubsystem matter(sys);
@@ -152,6 +168,14 @@ extern "C" __attribute__((visibility("default"))) int wp_simbody_top(int in, dou
                                                                       const double* p, double* z, long* counters) {
   const top_parameters tp{p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8]};
   return give(top(in == wp_simbody_rkm ? integrator::rkm : integrator::cpodes, accuracy, t_end, tp), z, counters);
+}
+
+extern "C" __attribute__((visibility("default"))) int wp_simbody_top_exact(int in, double accuracy, double t_end,
+                                                                            const double* p, double* z,
+                                                                            long* counters) {
+  const top_parameters tp{p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8]};
+  return give(top_exact(in == wp_simbody_rkm ? integrator::rkm : integrator::cpodes, accuracy, t_end, tp), z,
+              counters);
 }
 
 extern "C" __attribute__((visibility("default"))) int wp_simbody_chain(int in, double accuracy, double t_end, int n,

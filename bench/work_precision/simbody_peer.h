@@ -1,5 +1,5 @@
 #pragma once
-// Simbody models of two work-precision problems (simbody_peer.cpp), built as a
+// Simbody models of three work-precision problems (simbody_peer.cpp), built as a
 // loadable module with a plain C interface. Why a module: Simbody's CPodes is a
 // fork of SUNDIALS CVODE and libSimTKmath exports the same N_V* vector symbols as
 // SUNDIALS 6 with a different N_Vector layout; linked into one executable with
@@ -13,7 +13,7 @@
 // and the counters (steps taken, Newton iterations of CPodes (0 for RKM),
 // realizations of the equations of motion) to counters[0..2], and returns 1 if the
 // integration reached t_end (0 otherwise, also on an exception).
-//   top:   z[0..6] = (q1, q2, q3, q4, w1, w2, w3), the quaternion of the body's
+//   top, topx: z[0..6] = (q1, q2, q3, q4, w1, w2, w3), the quaternion of the body's
 //          rotation R_GB with the scalar part last (pradis's convention; Simbody's
 //          Quaternion is (w, x, y, z)) and the body angular velocity
 //          omega_b = R_GB^T w_GB;
@@ -39,6 +39,10 @@ enum { wp_simbody_rkm = 0, wp_simbody_cpodes = 1 };
 /// equations as rigid::top_rhs.
 int wp_simbody_top(int integrator, double accuracy, double t_end, const double* p, double* z, long* counters);
 typedef int (*wp_simbody_top_fn)(int, double, double, const double*, double*, long*);
+
+/// The same top on an exact spherical joint: a Ball mobilizer at the tip (p as for
+/// wp_simbody_top; k and c unused). z as for wp_simbody_top.
+int wp_simbody_top_exact(int integrator, double accuracy, double t_end, const double* p, double* z, long* counters);
 
 /// Planar pendulum chain of chain_reference.hpp: n point masses m on massless links
 /// of length l, the first hinged at the ground origin, released horizontally from
