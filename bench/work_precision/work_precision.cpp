@@ -911,12 +911,12 @@ inline run_result run_simbody(const problem& pb, int integrator, double acc) {
   if (pb.name == "top" || pb.name == "topx") {
     const rigid::top_data d = rigid::top_data::from_example();
     const double p[9] = {d.m, d.l, d.j1, d.j3, d.w3, d.theta0, d.k, d.c, d.g};
-    double z[7];
+    double z[7] = {0, 0, 0, 1, 0, 0, 0};  // not written after an exception in the module
     r.ok = (pb.name == "top" ? simbody.top : simbody.top_exact)(integrator, acc, pb.t_end, p, z, counters) == 1;
     r.y = rigid::compare_state(Eigen::Map<const Eigen::Vector4d>(z), Eigen::Map<const Eigen::Vector3d>(z + 4));
   } else {
     using c = chain_data;
-    r.y.resize(2 * c::n);
+    r.y = Eigen::VectorXd::Zero(2 * c::n);
     r.ok = simbody.chain(integrator, acc, pb.t_end, c::n, c::l, c::m, c::g, r.y.data(), counters) == 1;
   }
   r.steps = counters[0];
