@@ -13,7 +13,7 @@ minimum cost over all pradis series (error-controlled and fixed-step).
 Usage: scripts/work_precision_ratios.py [CSV] [--peer IDA] [--from 1e-3] [--to 1e-6] [--method NAME]
 --peer SOLVER or SOLVER/METHOD: the peer series (SOLVER alone: its first series in
 the CSV, e.g. IDA; Simbody/RKM and Simbody/CPodes select one of Simbody's two
-integrators, which only the top and chain problems have);
+integrators, which only the top, topx and chain problems have);
 --method NAME: pradis's series of that method only (e.g. BDF: the error-controlled BDF driver);
 --skip-method NAME: all of pradis's series but those of that method.
 Prints, per problem, the ratio at each decade, the median ratio over 13 errors
