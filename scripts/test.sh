@@ -9,7 +9,7 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
   apt-get update
   DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
     ca-certificates cmake g++ make libeigen3-dev doctest-dev libbenchmark-dev gnuplot-nox \
-    libsuitesparse-dev libsundials-dev libboost-dev
+    libsuitesparse-dev libsundials-dev libboost-dev libsimbody-dev
 fi
 cmake --preset "$preset"
 cmake --build --preset "$preset" -j"$(nproc)"

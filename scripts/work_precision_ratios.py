@@ -11,6 +11,9 @@ an error tighter than the series' best is not reached. pradis's best is the
 minimum cost over all pradis series (error-controlled and fixed-step).
 
 Usage: scripts/work_precision_ratios.py [CSV] [--peer IDA] [--from 1e-3] [--to 1e-6] [--method NAME]
+--peer SOLVER or SOLVER/METHOD: the peer series (SOLVER alone: its first series in
+the CSV, e.g. IDA; Simbody/RKM and Simbody/CPodes select one of Simbody's two
+integrators, which only the top, topx and chain problems have);
 --method NAME: pradis's series of that method only (e.g. BDF: the error-controlled BDF driver);
 --skip-method NAME: all of pradis's series but those of that method.
 Prints, per problem, the ratio at each decade, the median ratio over 13 errors
@@ -77,7 +80,8 @@ def main(argv):
     grid = [lo * (hi / lo) ** (k / 12) for k in range(13)]
     for prob, ss in series.items():
         fronts = {k: front(v) for k, v in ss.items()}
-        peers = [k for k in fronts if k[0] == peer]
+        psolver, _, pmethod = peer.partition("/")
+        peers = [k for k in fronts if k[0] == psolver and (not pmethod or k[1] == pmethod)]
         if not peers:
             continue
         pf = fronts[peers[0]]

@@ -14,6 +14,9 @@
 ///             on a penalty spherical joint SPH3 to the ground, k = 1e6 N/m, gravity
 ///             as F3), to t = 1 s: spin 30 rad/s, released at 30 degrees from the
 ///             vertical. The peers integrate the same penalty equations.
+///   topx      the same top on the exact spherical joint SPH3X (top_parameters::
+///             exact_joint); the peers integrate Euler's equations about the tip
+///             (top_exact_rhs), y = (q, omega_b).
 ///
 /// State of the peers: y = (q1, q2, q3, q4, w1, w2, w3) for the free body, and
 /// y = (x1, x2, x3, x1', x2', x3', q1, q2, q3, q4, w1, w2, w3) for the top, where q is
@@ -153,6 +156,23 @@ inline Eigen::VectorXd top_start(const top_data& d) {
   y(9) = std::cos(d.theta0 / 2);
   y(12) = d.w3;
   return y;
+}
+
+/// y' of the top on an exact spherical joint at its tip (topx: SPH3X in pradis, a
+/// Ball mobilizer in Simbody), y = (q, omega_b): Euler's equations about the fixed
+/// tip, I_O omega_b' + omega_b x I_O omega_b = r_c x R^T (0, 0, -m g), with
+/// I_O = diag(j1 + m l^2, j1 + m l^2, j3) (parallel axes) and r_c = (0, 0, l) the
+/// centre of mass from the tip in body axes.
+inline void top_exact_rhs(const top_data& d, const double* y, double* dy) {
+  const quaternion q(y[0], y[1], y[2], y[3]);
+  const vec3 w(y[4], y[5], y[6]);
+  const Eigen::Matrix3d rot = pradis::spatial::rotation_matrix(q);
+  const vec3 inertia(d.j1 + d.m * d.l * d.l, d.j1 + d.m * d.l * d.l, d.j3);
+  const vec3 tau = vec3(0, 0, d.l).cross(rot.transpose() * vec3(0, 0, -d.m * d.g));
+  const vec3 wd = (tau - w.cross(inertia.cwiseProduct(w))).cwiseQuotient(inertia);
+  const quaternion qd = quaternion_rate(y, w);
+  for (int i = 0; i < 4; ++i) dy[i] = qd(i);
+  for (int i = 0; i < 3; ++i) dy[4 + i] = wd(i);
 }
 
 // --- comparison --------------------------------------------------------------
