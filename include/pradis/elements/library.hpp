@@ -23,6 +23,7 @@
 #include "pradis/elements/mech1d/linear_spring.hpp"
 #include "pradis/elements/mech1d/point_mass.hpp"
 #include "pradis/elements/mech1d/sources.hpp"
+#include "pradis/elements/mech1d/table_spring.hpp"
 #include "pradis/elements/planar/eccentric_mass.hpp"
 #include "pradis/elements/pneumatic/chambers.hpp"
 #include "pradis/elements/pneumatic/orifice.hpp"
@@ -47,7 +48,7 @@
 namespace pradis::elements {
 
 /// 1D mechanics.
-using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, constant_force, sine_force,
+using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, table_spring, constant_force, sine_force,
                                   displacement_source, velocity_source, initial_displacement, initial_velocity>;
 /// Planar mechanics.
 using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass, planar_rigid_link, planar_pin_joint>;

@@ -18,6 +18,7 @@
 
 #include "pradis/lang/ast.hpp"
 #include "pradis/lang/lexer.hpp"
+#include "pradis/lang/table_file.hpp"
 
 namespace pradis::lang {
 
@@ -154,7 +155,10 @@ class parser {
       ++p_;  // '='
       for (;;) {
         if (at_statement_end()) fail(cur().loc, "expected a value after '=' or ',', found " + describe(cur()));
-        d.values.push_back(value());
+        if (at(tok::word) && upper(cur().text) == "FILE" && next().kind == tok::lparen)
+          file_values(d.values);
+        else
+          d.values.push_back(value());
         if (at(tok::comma)) {
           ++p_;
           skip_newlines();  // a trailing comma continues the list on the next line
@@ -165,6 +169,25 @@ class parser {
       end_statement("the value list (separate values with ',')");
       out.push_back(std::move(d));
     }
+  }
+
+  /// `FILE("table.csv")` in a value list: the numbers of a two-column table file
+  /// (io::parse_table_csv), x1, y1, x2, y2, ..., each located at FILE. The path
+  /// is relative to this model file; errors in the table point into it.
+  void file_values(std::vector<ast::item>& out) {
+    const location where = cur().loc;
+    p_ += 2;  // FILE (
+    if (!at(tok::string))
+      fail(cur().loc, "FILE needs a file name in double quotes, FILE(\"table.csv\"), found " + describe(cur()));
+    const std::string path = cur().text;
+    const location path_loc = cur().loc;
+    ++p_;
+    if (!at(tok::rparen)) fail(cur().loc, "expected ')' after the file name of FILE, found " + describe(cur()));
+    ++p_;
+    if (path.empty()) fail(path_loc, "FILE with an empty file name");
+    std::string resolved;
+    std::optional<std::string> text = load_relative(path, resolved, path_loc, "table file");
+    table_file_items(std::move(*text), resolved, where, path_loc, out);
   }
 
   void fragment_section(const token& t) {
@@ -249,21 +272,30 @@ class parser {
     prog_.actions.push_back(std::move(a));
   }
 
-  void include_section(const token& t) {
-    const std::string path = path_argument(t);
-    if (depth_ + 1 > max_include_depth)
-      fail(t.loc, "$INCLUDE nested more than " + std::to_string(max_include_depth) +
-                      " levels deep (does a file include itself?)");
+  /// Reads `path` (relative to this source file) through the loader; sets `resolved`.
+  /// Fails at `loc` ("cannot read the <what> '<path>'", with the reason) if it cannot.
+  std::optional<std::string> load_relative(const std::string& path, std::string& resolved, const location& loc,
+                                           const char* what) {
     std::filesystem::path p(path);
     if (p.is_relative()) p = std::filesystem::path(src_->name).parent_path() / p;
-    const std::string resolved = p.lexically_normal().string();
+    resolved = p.lexically_normal().string();
     std::error_code ec;
     errno = 0;
     std::optional<std::string> text =
         load_ && !std::filesystem::is_directory(resolved, ec) ? load_(resolved) : std::nullopt;
     if (!text)
-      fail(t.loc, "cannot read the included file '" + resolved + "'" +
-                      (std::filesystem::is_directory(resolved, ec) ? ": it is a directory" : os_reason()));
+      fail(loc, std::string("cannot read the ") + what + " '" + resolved + "'" +
+                    (std::filesystem::is_directory(resolved, ec) ? ": it is a directory" : os_reason()));
+    return text;
+  }
+
+  void include_section(const token& t) {
+    const std::string path = path_argument(t);
+    if (depth_ + 1 > max_include_depth)
+      fail(t.loc, "$INCLUDE nested more than " + std::to_string(max_include_depth) +
+                      " levels deep (does a file include itself?)");
+    std::string resolved;
+    std::optional<std::string> text = load_relative(path, resolved, t.loc, "included file");
     auto src = std::make_shared<const source_file>(source_file{resolved, std::move(*text)});
     parser sub(src, prog_, load_, depth_ + 1);
     sub.parse();  // $END in an included file ends that file only
