@@ -77,6 +77,28 @@ double pendulum_period(double i_o, double mgd, double theta0) {
 }
 
 vec3 work3(std::span<const double> w, int k) { return {w[k], w[k + 1], w[k + 2]}; }
+
+/// A planar compound pendulum (MD) on PIN2X to the ground, released at rest at
+/// theta0: the centre hangs d below the pin at rotation 0, the pin point is d above
+/// the centre.
+struct planar_pendulum {
+  using model_type = model<planar_inertia, planar_pin_joint, constant_force, initial_displacement>;
+  model_type m;
+  dof x, y, th;
+  element_ref<planar_pin_joint> pin;
+  planar_pendulum(double mass, double j, double d, double theta0) {
+    x = m.add_dof("x");
+    y = m.add_dof("y");
+    th = m.add_dof("theta");
+    const dof G = m.ground();
+    m.add<planar_inertia>("body", {mass, j}, x, y, th);
+    pin = m.add<planar_pin_joint>("pin", {0, 0, 0, 0, 0, -d, 0, d}, G, G, G, x, y, th);
+    m.add<constant_force>("weight", {-mass * g}, y);
+    m.add<initial_displacement>("theta0", {theta0}, th);
+    m.add<initial_displacement>("x0", {d * std::sin(theta0)}, x);
+    m.add<initial_displacement>("y0", {d * (1 - std::cos(theta0))}, y);
+  }
+};
 }  // namespace
 
 TEST_SUITE("spatial/exact joint family") {
@@ -272,19 +294,13 @@ TEST_SUITE("spatial/exact joint family") {
   }
 
   TEST_CASE("PIN2X: a planar compound pendulum at 60 degrees swings with the exact period, the pin closed") {
-    using planar_model = model<planar_inertia, planar_pin_joint, constant_force, initial_displacement>;
     const double mass = 1.0, j = 0.02, d = 0.5, theta0 = 60 * pi / 180, h = 1e-3;
     const double exact = pendulum_period(j + mass * d * d, mass * g * d, theta0);
-    planar_model m;
-    const dof x = m.add_dof("x"), y = m.add_dof("y"), th = m.add_dof("theta"), G = m.ground();
-    m.add<planar_inertia>("body", {mass, j}, x, y, th);
-    // The centre hangs d below the pin at rotation 0; the pin point is d above the centre.
-    const auto pin = m.add<planar_pin_joint>("pin", {0, 0, 0, 0, 0, -d, 0, d}, G, G, G, x, y, th);
-    m.add<constant_force>("weight", {-mass * g}, y);
-    m.add<initial_displacement>("theta0", {theta0}, th);
-    m.add<initial_displacement>("x0", {d * std::sin(theta0)}, x);
-    m.add<initial_displacement>("y0", {d * (1 - std::cos(theta0))}, y);
-    simulation<planar_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    planar_pendulum p(mass, j, d, theta0);
+    auto& m = p.m;
+    const dof th = p.th;
+    const auto pin = p.pin;
+    simulation<planar_pendulum::model_type, alpha_family> sim(m, alpha_family(hht{-0.05}));
     crossings c;
     double gap = 0;
     sim.on_output([&](const auto& s) {
@@ -303,17 +319,12 @@ TEST_SUITE("spatial/exact joint family") {
     // At rest at theta0: theta'' = -m g d sin(theta0) / I_O; the centre (d sin, -d cos)
     // accelerates tangentially by theta'' d (cos, sin); the pin force on the body is
     // m a_c - m g_vec.
-    using planar_model = model<planar_inertia, planar_pin_joint, constant_force, initial_displacement>;
     const double mass = 1.3, j = 0.02, d = 0.5, theta0 = 60 * pi / 180;
-    planar_model m;
-    const dof x = m.add_dof("x"), y = m.add_dof("y"), th = m.add_dof("theta"), G = m.ground();
-    m.add<planar_inertia>("body", {mass, j}, x, y, th);
-    const auto pin = m.add<planar_pin_joint>("pin", {0, 0, 0, 0, 0, -d, 0, d}, G, G, G, x, y, th);
-    m.add<constant_force>("weight", {-mass * g}, y);
-    m.add<initial_displacement>("theta0", {theta0}, th);
-    m.add<initial_displacement>("x0", {d * std::sin(theta0)}, x);
-    m.add<initial_displacement>("y0", {d * (1 - std::cos(theta0))}, y);
-    simulation<planar_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    planar_pendulum p(mass, j, d, theta0);
+    auto& m = p.m;
+    const dof th = p.th;
+    const auto pin = p.pin;
+    simulation<planar_pendulum::model_type, alpha_family> sim(m, alpha_family(hht{-0.05}));
     double fx0 = NAN, fy0 = NAN, acc0 = NAN;
     sim.on_output([&](const auto& s) {
       if (s.time() != 0.0) return;
