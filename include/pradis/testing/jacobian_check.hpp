@@ -109,6 +109,11 @@ class jacobian_checker {
 
   /// The element being checked.
   const E& element() const noexcept { return e_; }
+  /// The state of the last accepted step (OLD) the checked evaluations see; zero
+  /// unless a test sets it, e.g. to check the Jacobian of a stick or slip mode.
+  std::span<double> old_state() noexcept { return old_; }
+  /// The state the last evaluation wrote (NEW).
+  std::span<const double> new_state() const noexcept { return new_; }
 
   /// Flows at a state (no Jacobian).
   typename traits::vector flows(const local_input<E>& in) {
