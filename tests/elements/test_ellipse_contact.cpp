@@ -11,6 +11,8 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <random>
+#include <sstream>
 #include <vector>
 
 #include "element_test_support.hpp"
@@ -214,6 +216,91 @@ TEST_SUITE("elements/ELLPL") {
       check_error(error_from([&] { sim.run(fixed); }), error_code::singular_situation, "ELLPL", "contact",
                   "passed behind polyline segment 1");
     }
+  }
+
+  TEST_CASE("the Jacobian is exact in contact with every mode: free, stick (rotated anchor) and slip both ways") {
+    // Central differences of the flows (PRADIS element manual, 3.6.8) at random
+    // states of a tilted ellipse on a two-segment floor, with the old state of
+    // segment 1 set to each mode.
+    const auto q = ellipse_contact::example();
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> uni(-1.0, 1.0);
+    for (int mode : {0, 1, 2, 3}) {
+      CAPTURE(mode);
+      testing::jacobian_checker<ellipse_contact> chk(ellipse_contact{q}, 18);
+      const auto old = chk.old_state();
+      REQUIRE(old.size() == 8);
+      old[0] = mode;
+      old[1] = 0.05;   // stuck material point in body axes
+      old[2] = -0.19;
+      old[3] = 1.2;    // anchor along segment 1
+      int in_contact = 0;
+      for (int trial = 0; trial < 200; ++trial) {
+        local_input<ellipse_contact> in;
+        for (int k = 0; k < 3; ++k) {
+          in.u(k) = 0.01 * uni(rng);
+          in.v(k) = 2 * uni(rng);
+        }
+        if (!chk.element().admissible(in)) continue;
+        const auto f = chk.flows(in);
+        if (f.norm() == 0) continue;
+        ++in_contact;
+        const auto r = chk.check(in);
+        if (!r.ok) {
+          std::ostringstream os;
+          r.print(os);
+          FAIL_CHECK(os.str());
+          break;
+        }
+      }
+      CHECK(in_contact > 100);
+    }
+  }
+
+  TEST_CASE("bad parameters stop the run with code 100 naming ELLPL, the instance and the parameter") {
+    struct bad {
+      ellipse_contact::parameters q;
+      const char* mention;
+    };
+    auto base = [] { return law(0.0, 0.1, 0.1, 0.1, 1e5, 1.0, 0.0, 0.5, 0.4, 1e5, 10.0, {-1, 0, 1, 0}); };
+    std::vector<bad> cases;
+    auto with = [&](auto change, const char* mention) {
+      auto q = base();
+      change(q);
+      cases.push_back({q, mention});
+    };
+    with([](auto& q) { q.a = 0; }, "semi-axes");
+    with([](auto& q) { q.b = -1; }, "semi-axes");
+    with([](auto& q) { q.k = 0; }, "contact stiffness k");
+    with([](auto& q) { q.exponent = 0.5; }, "exponent e");
+    with([](auto& q) { q.damping = -1; }, "damping factor d");
+    with([](auto& q) { q.mu_s = -0.1; }, "static friction coefficient mu_s");
+    with([](auto& q) { q.mu_k = 0.6; }, "kinetic friction coefficient mu_k");
+    with([](auto& q) { q.mu_k = -0.1; }, "kinetic friction coefficient mu_k");
+    with([](auto& q) { q.k_t = 0; }, "stick stiffness k_t");
+    with([](auto& q) { q.c_t = -1; }, "stick damping c_t");
+    with([](auto& q) { q.x0 = std::nan(""); }, "parameter 1 is not finite");
+    with([](auto& q) { q.polyline[3] = INFINITY; }, "polyline coordinate 4");
+    with([](auto& q) { q.polyline = {0, 0, 0, 0, 1, 0}; }, "polyline points 1 and 2 coincide");
+    with([](auto& q) { q.polyline = {0, 0, 1}; }, "pairs of coordinates");
+    for (const auto& c : cases) {
+      CAPTURE(c.mention);
+      contact_scene s(1.0, 0.01, c.q);
+      simulation sim(s.md);
+      check_error(error_from([&] { sim.run(fixed_step(0.01, 1e-3)); }), error_code::invalid_parameter, "ELLPL",
+                  "contact", c.mention);
+    }
+  }
+
+  TEST_CASE("a flat ELLPL with an odd parameter count is code 101") {
+    contact_model md;
+    const dof x = md.add_dof("x"), y = md.add_dof("y"), r = md.add_dof("r");
+    const std::vector<dof> dofs{x, y, r};
+    const std::vector<double> flat{0, 0.1, 0, 0.1, 0.1, 1e5, 1, 0, 0, 0, 0, 0, -1, 0, 1, 0, 2};
+    const auto e = flat_add_error<ellipse_contact>(md, "contact", dofs, flat);
+    REQUIRE(e.has_value());
+    CHECK(e->number() == static_cast<int>(error_code::parameter_count));
+    CHECK(e->element_type() == "ELLPL");
   }
 }
 

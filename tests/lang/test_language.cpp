@@ -254,6 +254,36 @@ TEST_SUITE("lang/language") {
     CHECK(worst_gap < 1e-12);
   }
 
+  TEST_CASE("bouncing ball (ELLPL): the bounces die out and the ball rolls on the flat part at v_x = -r w") {
+    // examples/models/bouncing_ball.prd: a disc of radius r = 0.1 m thrown into a
+    // valley. Once the bounces have died out it rolls on the flat part: the stick
+    // state holds the contact point (rolling without slip, v_x = -r w: the disc's
+    // kinematics) and it stays in contact near the Hertz depth (m g / k)^(2/3)
+    // below r (N = k delta^1.5 = m g). The contact still rings there at about
+    // 61 Hz (sqrt(1.5 k delta^0.5 / m)), weakly damped by the Hunt-Crossley term:
+    // measured 4.7e-5 m and +-6 N about the rest values.
+    auto s =
+        std::make_unique<lang::session>(lang::parse_file((lang_test::models_dir() / "bouncing_ball.prd").string()));
+    s->run({.write_files = false});
+    const auto& t = s->results();
+    const std::size_t y = column(t, "y"), vx = column(t, "vx"), w = column(t, "w"), mode = column(t, "Flat part mode"),
+                      normal = column(t, "Floor force");
+    const double r = 0.1, depth = std::pow(9.81 / 1e7, 2.0 / 3.0);
+    int rolling = 0;
+    double slip = 0, height = 0;
+    for (std::size_t k = 0; k < t.rows(); ++k) {
+      if (t.at(k, 0) < 3.4 || t.at(k, 0) > 3.8) continue;
+      ++rolling;
+      CHECK(t.at(k, mode) == 1);  // stick
+      slip = std::max(slip, std::abs(t.at(k, vx) + r * t.at(k, w)));
+      height = std::max(height, std::abs(t.at(k, y) - (-1.4 - depth)));
+      CHECK(t.at(k, normal) > 0);  // in contact, no more bouncing
+    }
+    CHECK(rolling >= 30);
+    CHECK(slip < 5e-5);  // measured 2.5e-5 m/s
+    CHECK(height < 1e-4);  // measured 4.7e-5 m
+  }
+
   TEST_CASE("$REPLACE changes parameters for the following stages") {
     // Mass 2 on spring 100 with load 10, then load 30.
     std::string text = small_with("  Calc 'SHTERM (END=0.1, SMAX=1E-3)\n",

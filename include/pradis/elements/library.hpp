@@ -17,14 +17,17 @@
 #include "pradis/elements/electric/passive.hpp"
 #include "pradis/elements/electric/semiconductors.hpp"
 #include "pradis/elements/electric/sources.hpp"
+#include "pradis/elements/mech1d/cam.hpp"
 #include "pradis/elements/mech1d/forces.hpp"
 #include "pradis/elements/mech1d/initial_conditions.hpp"
 #include "pradis/elements/mech1d/linear_damper.hpp"
 #include "pradis/elements/mech1d/linear_spring.hpp"
 #include "pradis/elements/mech1d/point_mass.hpp"
 #include "pradis/elements/mech1d/sources.hpp"
+#include "pradis/elements/mech1d/table_damper.hpp"
 #include "pradis/elements/mech1d/table_spring.hpp"
 #include "pradis/elements/planar/eccentric_mass.hpp"
+#include "pradis/elements/planar/ellipse_contact.hpp"
 #include "pradis/elements/pneumatic/chambers.hpp"
 #include "pradis/elements/pneumatic/orifice.hpp"
 #include "pradis/elements/planar/planar_inertia.hpp"
@@ -48,10 +51,12 @@
 namespace pradis::elements {
 
 /// 1D mechanics.
-using mech1d_elements = type_list<point_mass, linear_spring, linear_damper, table_spring, constant_force, sine_force,
-                                  displacement_source, velocity_source, initial_displacement, initial_velocity>;
+using mech1d_elements =
+    type_list<point_mass, linear_spring, linear_damper, table_spring, table_damper, cam, constant_force, sine_force,
+              displacement_source, velocity_source, initial_displacement, initial_velocity>;
 /// Planar mechanics.
-using planar_elements = type_list<planar_inertia, planar_link, eccentric_mass, planar_rigid_link, planar_pin_joint>;
+using planar_elements =
+    type_list<planar_inertia, planar_link, eccentric_mass, planar_rigid_link, planar_pin_joint, ellipse_contact>;
 /// Spatial mechanics (rotational nodes with the hidden fourth potential, docs/rotations.md).
 using spatial_elements = type_list<rigid_body, spatial_force, spatial_torque, body_force, body_torque, initial_rotation>;
 // --- spatial connecting elements (SD3, RSD3, SPH3, REV3, SHC3 and the exact joints) ---

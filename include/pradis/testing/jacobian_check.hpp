@@ -79,18 +79,20 @@ class jacobian_checker {
   static constexpr int n = traits::n;
 
   /// Prepares the element (runs new_integration if it has one). `npar` is the
-  /// parameter count (default: PAR). Throws pradis::error if the parameters are bad.
-  explicit jacobian_checker(E e, int npar = E::passport.par, jacobian_check_options o = {})
+  /// parameter count (default: the element's parameter_count() if it has one,
+  /// as model::add asks, else PAR). Throws pradis::error if the parameters are bad.
+  explicit jacobian_checker(E e, int npar = -1, jacobian_check_options o = {})
       : e_(std::move(e)),
         o_(o),
-        work_(static_cast<std::size_t>(E::passport.work_size(npar)), 0.0),
-        old_(static_cast<std::size_t>(E::passport.state_size(npar)), 0.0),
+        npar_(npar >= 0 ? npar : default_count(e_)),
+        work_(static_cast<std::size_t>(E::passport.work_size(npar_)), 0.0),
+        old_(static_cast<std::size_t>(E::passport.state_size(npar_)), 0.0),
         new_(old_.size(), 0.0) {
     ctx_ = element_context(E::passport.name, "checked");
     ctx_.work = work_;
     ctx_.old_state = old_;
     ctx_.new_state = new_;
-    ctx_.npar = npar;
+    ctx_.npar = npar_;
     ctx_.nstep = 0;  // NEWINT of the zero step, then the zero-step hook, as in a run
     if constexpr (HasNewIntegration<E>) {
       ctx_.newint = true;
@@ -202,6 +204,13 @@ class jacobian_checker {
 
   E e_;
   jacobian_check_options o_;
+  static int default_count(const E& e) {
+    if constexpr (requires { e.parameter_count(); })
+      return e.parameter_count();
+    else
+      return E::passport.par;
+  }
+  int npar_ = 0;
   std::vector<double> work_, old_, new_;
   element_context ctx_;
 };

@@ -74,11 +74,12 @@ struct ellipse_contact {
               "4 more entries for each further segment",
       .special = "code 100 if a value is not finite, a or b <= 0, k <= 0, e < 1, d < 0, mu_s < 0, mu_k < 0, "
                  "mu_k > mu_s, k_t <= 0 with mu_s > 0, or two successive polyline points coincide; code 101 for "
-                 "an even count. Code 75 if the ellipse's centre passes behind a segment, within its length, that "
+                 "an odd count; code 75 if the ellipse's centre passes behind a segment, within its length, that "
                  "it was in front of at the last step (it went through within one step; the integrator cuts the "
                  "step). STEPMD: while the ellipse approaches a segment at "
                  "closing speed v the step is limited to max(gap / 2, r) / v, r = min(a, b)/1000, so that the contact "
-                 "is not stepped over, and while the penetration grows to max(penetration, r) / v. A corner of the polyline that is convex towards the ellipse is not a contact "
+                 "is not stepped over, and while the penetration grows to max(penetration, r) / v. A corner of "
+                 "the polyline that is convex towards the ellipse is not a contact "
                  "point of its own: round it with short segments. State: 4 entries per segment"};
   /// The parameters, in PAR order.
   struct parameters {
@@ -98,15 +99,18 @@ struct ellipse_contact {
       seg_.push_back(detail::contact_segment::between(p.polyline[i], p.polyline[i + 1], p.polyline[i + 2],
                                                       p.polyline[i + 3]));
   }
-  /// Example parameters: an ellipse pressed 1 cm into a floor of two segments, with friction.
+  /// Example parameters: an ellipse pressed about 1 cm into a floor of two segments, with friction.
   static parameters example() {
-    return {0.3, 0.19, 0.2, 0.4, 0.2, 1e5, 1.5, 0.2, 0.5, 0.4, 1e4, 50.0, {-1.0, 0.0, 0.5, -0.05, 1.5, 0.1}};
+    return {0.3, 0.16, 0.2, 0.4, 0.2, 1e5, 1.5, 0.2, 0.5, 0.4, 1e4, 50.0, {-1.0, 0.0, 0.5, -0.05, 1.5, 0.1}};
   }
   static ellipse_contact from_parameters(std::span<const double> v) {
     return ellipse_contact({v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11],
                             std::vector<double>(v.begin() + 12, v.end())});
   }
   const parameters& params() const noexcept { return p; }
+  /// The flat parameter count (12 + the polyline's coordinates): model::add sizes
+  /// the per-segment state and work vectors (STP, WRP) from it.
+  int parameter_count() const noexcept { return 12 + static_cast<int>(p.polyline.size()); }
   /// Number of segments (contact points).
   int segments() const noexcept { return static_cast<int>(seg_.size()); }
 
@@ -142,7 +146,8 @@ struct ellipse_contact {
     if (!(p.k > 0)) ctx.invalid_parameter("contact stiffness k = " + to_text(p.k) + " must be > 0");
     if (!(p.exponent >= 1)) ctx.invalid_parameter("exponent e = " + to_text(p.exponent) + " must be >= 1");
     if (!(p.damping >= 0)) ctx.invalid_parameter("damping factor d = " + to_text(p.damping) + " must be >= 0");
-    if (!(p.mu_s >= 0)) ctx.invalid_parameter("static friction coefficient mu_s = " + to_text(p.mu_s) + " must be >= 0");
+    if (!(p.mu_s >= 0))
+      ctx.invalid_parameter("static friction coefficient mu_s = " + to_text(p.mu_s) + " must be >= 0");
     if (!(p.mu_k >= 0) || p.mu_k > p.mu_s)
       ctx.invalid_parameter("kinetic friction coefficient mu_k = " + to_text(p.mu_k) + " must be >= 0 and <= mu_s = " +
                             to_text(p.mu_s));
