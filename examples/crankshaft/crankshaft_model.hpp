@@ -145,6 +145,9 @@ struct handles {
   std::vector<std::array<dof, 3>> x;   ///< translations of the shaft nodes 0..8
   std::vector<rotation_node> r;        ///< rotational nodes of the shaft nodes 0..8
   std::vector<std::array<double, 3>> pos;  ///< their initial positions
+  std::array<dof, 3> rod_x{};          ///< translations of the rod's centre of mass
+  rotation_node rod_r{};               ///< the rod's rotational node
+  std::array<double, 3> rod_pos{};     ///< its initial position
   dof py;                              ///< piston displacement along Y from top dead centre
   dof phi, cam;                        ///< drive and camshaft angles
   element_ref<shaft_coupling> drive, camshaft;
@@ -210,6 +213,9 @@ inline handles build(model_type& m, const parameters& P) {
   const rotation_node rr = m.add_rotation_node("rodq");
   const double xc = 0.10, yc = r + P.l / 2;
   m.add<rigid_body>("rod", {P.m_rod, P.j_rod, P.j_rod_axis, P.j_rod, 0, 0, 0, 0, 0, 0}, xr[0], xr[1], xr[2], rr);
+  h.rod_x = {xr[0], xr[1], xr[2]};
+  h.rod_r = rr;
+  h.rod_pos = {xc, yc, 0};
   // Big end: crank pin node 4 (a) and the rod point -l/2 along body Y (b).
   h.big_end = m.add<spherical_joint>("big_end", {{0.10, r, 0, 0, 0, 0, xc, yc, 0, 0, -P.l / 2, 0}, P.k_pin, P.c_pin}, h.x[4][0],
                          h.x[4][1], h.x[4][2], h.r[4], xr[0], xr[1], xr[2], rr);

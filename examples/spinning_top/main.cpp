@@ -9,23 +9,28 @@
 //
 // Writes the trajectory of the top's axis tip (the body point 2 l from the pivot
 // along the axis), the polar and azimuth angles of the axis and the joint gap, as
-// CSV, and a plot (PNG, with gnuplot) unless --no-plot.
+// CSV, an animation every 10 ms as a VTK time series (<dir>/vtk/spinning_top.pvd:
+// pivot, axis and a disc; open it in ParaView), and a plot (PNG, with gnuplot)
+// unless --no-plot.
 //
 // Usage: spinning_top [output-directory] [--no-plot] [--quick] [--k STIFFNESS] [--exact]
 //        (--quick: 0.5 s instead of 5 s, for the ctest smoke run; --k: the penalty
 //        stiffness of SPH3 [N/m], default 1e6; --exact: the exact joint SPH3X instead)
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "pradis/elements/library.hpp"
 #include "top_model.hpp"
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/io/table.hpp"
+#include "pradis/io/vtk_series.hpp"
 #include "common/gnuplot.hpp"
 #include "pradis/spatial/node_state.hpp"
 
@@ -68,9 +73,26 @@ int main(int argc, char** argv) try {
 
   io::table out({"axis tip X [m]", "axis tip Y [m]", "axis tip Z [m]", "polar angle [deg]", "azimuth [deg]",
                  "joint gap [m]"});
+  // Animation (ParaView): the pivot, the axis from the tip through the centre of
+  // mass to its top, and a disc of 8 triangles at the centre of mass.
+  io::vtk_scene scene;
+  const vec3 c0 = l * top.axis0();
+  const int pivot = scene.point({0, 0, 0}, {m.ground(), m.ground(), m.ground()});
+  const std::array<dof, 3> xc{top.x[0], top.x[1], top.x[2]};
+  const int centre = scene.body_point(c0, xc, r, vec3::Zero());
+  const int head = scene.body_point(c0, xc, r, {0, 0, l});
+  scene.line(pivot, centre);
+  scene.line(centre, head);
+  std::vector<int> rim;
+  for (int k = 0; k < 8; ++k)
+    rim.push_back(scene.body_point(c0, xc, r, {0.05 * std::cos(k * pi / 4), 0.05 * std::sin(k * pi / 4), 0}));
+  for (std::size_t k = 0; k < 8; ++k) scene.triangle(centre, rim[k], rim[(k + 1) % 8]);
+  io::vtk_series vtk(dir + "/vtk", "spinning_top", scene);
+  long output = 0;
   simulation sim(m);
   double max_gap = 0;
   sim.on_output([&](const auto& s) {
+    if (output++ % 5 == 0) vtk.write(s);  // every 10 ms
     max_gap = std::max(max_gap, s.get_model().work("tip")[0]);
     const vec3 ax = spatial::node_rotation(s, r).col(2);
     const vec3 tip = 2 * l * ax;  // the pivot stays at the origin (up to the joint gap)
@@ -84,6 +106,7 @@ int main(int argc, char** argv) try {
   const std::string csv = dir + "/spinning_top.csv";
   out.write_csv(csv);
   std::cout << "spinning_top: " << out.rows() << " output rows to " << csv << "\n";
+  std::cout << "animation: " << vtk.frames() << " frames, " << vtk.collection().string() << " (ParaView)\n";
   const auto& st = sim.statistics();
   std::cout << (params.exact_joint ? "joint: SPH3X (exact)" : "joint: SPH3, k = " + std::to_string(params.k) + " N/m")
             << "; largest joint gap " << max_gap << " m\n";
