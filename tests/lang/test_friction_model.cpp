@@ -1,0 +1,50 @@
+// examples/models/coulomb_oscillator.prd through the model language: FRICT by
+// its catalog name with the work-vector outputs; the mass stops where and when
+// the Coulomb oscillator's analytic solution says (Den Hartog, Mechanical
+// Vibrations, 8.2; tests/elements/test_friction.cpp checks every turning point).
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "lang_test_support.hpp"
+
+using namespace pradis;
+
+TEST_SUITE("lang/friction") {
+  TEST_CASE("the Coulomb oscillator model file stops at x = 0.005 m after 5 half cycles, t = pi / 2") {
+    auto s = std::make_unique<lang::session>(
+        lang::parse_file((lang_test::models_dir() / "coulomb_oscillator.prd").string()));
+    s->run({.write_files = false});
+    const auto& t = s->results();
+    std::size_t pos = 0, stuck = 0;
+    for (std::size_t c = 0; c < t.names().size(); ++c) {
+      if (t.names()[c] == "Position") pos = c + 1;
+      if (t.names()[c] == "Stuck") stuck = c + 1;
+    }
+    REQUIRE(pos > 0);
+    REQUIRE(stuck > 0);
+    // x_5 = -(x0 - 5 * 2 F / k) = 0.005 m, reached at t = 5 pi sqrt(m/k) = pi / 2
+    // (first-order in the step: within 1e-3 s at h = 1e-4, the test of FRICT).
+    const double t_stop = 5 * std::numbers::pi / 10;
+    int last_half = 0, after = 0;
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+      const double time = t.at(r, 0), x = t.at(r, pos);
+      CAPTURE(time);
+      if (time > 1.3 && time < t_stop - 1e-3) {  // the last half cycle, from x_4 = 0.015 down to x_5
+        CHECK(x > 0.005);
+        CHECK(x < 0.015 + 1e-7);
+        CHECK(t.at(r, stuck) == 0.0);
+        ++last_half;
+      } else if (time > t_stop + 1e-3) {  // at rest at x_5
+        CHECK(std::abs(x - 0.005) < 1e-7);
+        CHECK(t.at(r, stuck) == 1.0);
+        ++after;
+      }
+    }
+    CHECK(last_half > 20);
+    CHECK(after > 20);
+    CHECK(t.at(t.rows() - 1, 0) == doctest::Approx(2.0));
+  }
+}
