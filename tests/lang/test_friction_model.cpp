@@ -48,3 +48,33 @@ TEST_SUITE("lang/friction") {
     CHECK(t.at(t.rows() - 1, 0) == doctest::Approx(2.0));
   }
 }
+
+TEST_SUITE("lang/friction") {
+  TEST_CASE("the gear backlash model file: no torque until t = b / (|r| w1), then shaft 2 at r w1") {
+    auto s = std::make_unique<lang::session>(lang::parse_file((lang_test::models_dir() / "gear_backlash.prd").string()));
+    s->run({.write_files = false});
+    const auto& t = s->results();
+    std::size_t speed = 0, torque = 0, gap = 0;
+    for (std::size_t c = 0; c < t.names().size(); ++c) {
+      if (t.names()[c] == "Shaft 2 speed") speed = c + 1;
+      if (t.names()[c] == "Mesh torque") torque = c + 1;
+      if (t.names()[c] == "Gap") gap = c + 1;
+    }
+    REQUIRE(speed > 0);
+    REQUIRE(torque > 0);
+    REQUIRE(gap > 0);
+    const double r = -2, w1 = 1, b = 0.0205, k = 1e4, cl = 0.05, tc = b / (std::abs(r) * w1);
+    int free_rows = 0;
+    for (std::size_t i = 0; i < t.rows() && t.at(i, 0) < tc; ++i, ++free_rows) {
+      CAPTURE(t.at(i, 0));
+      CHECK(t.at(i, torque) == 0.0);
+      CHECK(t.at(i, speed) == 0.0);
+      CHECK(t.at(i, gap) == doctest::Approx(-r * w1 * t.at(i, 0)).epsilon(1e-12));  // g = -r phi1 = -r w1 t
+    }
+    CHECK(free_rows == 11);  // t = 0, 0.001, ..., 0.010
+    const std::size_t last = t.rows() - 1;
+    CHECK(t.at(last, speed) == doctest::Approx(r * w1).epsilon(1e-9));
+    CHECK(t.at(last, torque) == doctest::Approx(-cl * r * w1).epsilon(1e-9));
+    CHECK(t.at(last, gap) == doctest::Approx(b - cl * r * w1 / k).epsilon(1e-9));
+  }
+}
