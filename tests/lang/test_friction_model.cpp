@@ -78,3 +78,30 @@ TEST_SUITE("lang/friction") {
     CHECK(t.at(last, gap) == doctest::Approx(b - cl * r * w1 / k).epsilon(1e-9));
   }
 }
+
+TEST_SUITE("lang/friction") {
+  TEST_CASE("the capstan model file slips with T1 / T2 = exp(mu theta) at the rigid-rope acceleration") {
+    auto s = std::make_unique<lang::session>(lang::parse_file((lang_test::models_dir() / "capstan.prd").string()));
+    s->run({.write_files = false});
+    const auto& t = s->results();
+    std::size_t u1 = 0, t1 = 0, t2 = 0, slip = 0;
+    for (std::size_t c = 0; c < t.names().size(); ++c) {
+      if (t.names()[c] == "Load position") u1 = c + 1;
+      if (t.names()[c] == "Tension 1") t1 = c + 1;
+      if (t.names()[c] == "Tension 2") t2 = c + 1;
+      if (t.names()[c] == "Slip") slip = c + 1;
+    }
+    REQUIRE(u1 * t1 * t2 * slip > 0);
+    // The capstan equation (Euler, Eytelwein; Meriam & Kraige, Statics, 6/9):
+    // T1 = E T2 while slipping; the data of the file: a = (W - E P) / (m1 + E m2).
+    const double E = std::exp(0.3 * std::numbers::pi), W = 98.0665, P = 37.834360325167765;
+    const double a = (W - E * P) / (10.0 + E * 1.0), T1 = W - 10.0 * a;
+    for (std::size_t r = 1; r < t.rows(); ++r) {
+      const double time = t.at(r, 0);
+      CAPTURE(time);
+      CHECK(t.at(r, t1) / t.at(r, t2) == doctest::Approx(E).epsilon(1e-12));
+      CHECK(t.at(r, u1) == doctest::Approx(T1 / 1e5 + a * time * time / 2).epsilon(1e-9));
+      CHECK(t.at(r, slip) == doctest::Approx(a * time * time / 2).epsilon(1e-8));
+    }
+  }
+}
