@@ -100,8 +100,9 @@ TEST_SUITE("lang/friction") {
       const double time = t.at(r, 0);
       CAPTURE(time);
       CHECK(t.at(r, t1) / t.at(r, t2) == doctest::Approx(E).epsilon(1e-12));
-      CHECK(t.at(r, u1) == doctest::Approx(T1 / 1e5 + a * time * time / 2).epsilon(1e-9));
-      CHECK(t.at(r, slip) == doctest::Approx(a * time * time / 2).epsilon(1e-8));
+      // The trapezoidal rule is exact for the constant acceleration (as in the BELT test of test_friction.cpp).
+      CHECK(std::abs(t.at(r, u1) - (T1 / 1e5 + a * time * time / 2)) < 1e-9);
+      CHECK(std::abs(t.at(r, slip) - a * time * time / 2) < 1e-9);
     }
   }
 }
