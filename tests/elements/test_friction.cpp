@@ -210,6 +210,9 @@ TEST_SUITE("elements/FRICT") {
       CHECK(std::abs(ec) < bound);
       CHECK(ec / ef == doctest::Approx(2.0).epsilon(0.25));
     }
+    MESSAGE("Coulomb oscillator, stop time error at h = 1e-4 and 5e-5: ", coarse.t.back() - n * std::numbers::pi / w,
+            " ", fine.t.back() - n * std::numbers::pi / w, " s; stop position error: ",
+            coarse.x.back() - (n % 2 ? -1.0 : 1.0) * (x0 - 2 * n * fk), " m");
     const double rest = (n % 2 ? -1.0 : 1.0) * (x0 - 2 * n * fk);
     CHECK(std::abs(rest) <= fk);
     CHECK(coarse.end_stuck);
