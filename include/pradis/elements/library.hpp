@@ -17,8 +17,11 @@
 #include "pradis/elements/electric/passive.hpp"
 #include "pradis/elements/electric/semiconductors.hpp"
 #include "pradis/elements/electric/sources.hpp"
+#include "pradis/elements/mech1d/belt.hpp"
 #include "pradis/elements/mech1d/cam.hpp"
 #include "pradis/elements/mech1d/forces.hpp"
+#include "pradis/elements/mech1d/friction.hpp"
+#include "pradis/elements/mech1d/gear.hpp"
 #include "pradis/elements/mech1d/initial_conditions.hpp"
 #include "pradis/elements/mech1d/linear_damper.hpp"
 #include "pradis/elements/mech1d/linear_spring.hpp"
@@ -50,10 +53,10 @@
 
 namespace pradis::elements {
 
-/// 1D mechanics.
+/// 1D mechanics (with friction, gear pair and belt on a drum: docs/friction.md).
 using mech1d_elements =
     type_list<point_mass, linear_spring, linear_damper, table_spring, table_damper, cam, constant_force, sine_force,
-              displacement_source, velocity_source, initial_displacement, initial_velocity>;
+              displacement_source, velocity_source, initial_displacement, initial_velocity, friction, gear, belt>;
 /// Planar mechanics.
 using planar_elements =
     type_list<planar_inertia, planar_link, eccentric_mass, planar_rigid_link, planar_pin_joint, ellipse_contact>;
