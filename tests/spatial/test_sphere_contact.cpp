@@ -27,6 +27,7 @@
 #include <iostream>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pradis/elements/library.hpp"
@@ -59,6 +60,72 @@ struct ball {
   vec3 position(const S& s) const { return {s.u(x[0]), s.u(x[1]), s.u(x[2])}; }
   template <class S>
   vec3 velocity(const S& s) const { return {s.v(x[0]), s.v(x[1]), s.v(x[2])}; }
+};
+
+/// CSPHPL parameters: a sphere of radius r centred at the body's reference point
+/// (initially at height z0) against the plane z = 0.
+sphere_plane_contact::parameters on_floor(double z0, double r, double law, double k, double c, double mu, double kt,
+                                          double mass) {
+  return {0, 0, z0, 0, 0, 0, r, 0, 0, 0, 0, 0, 1, law, k, c, mu, kt, mass};
+}
+
+/// One ball on the floor z = 0 under a constant force (gravity), started with a
+/// velocity and angular velocity.
+struct floor_scene {
+  contact_model m;
+  ball b;
+  element_ref<sphere_plane_contact> contact;
+  floor_scene(double mass, double j, const sphere_plane_contact::parameters& cp, const vec3& load, const vec3& v0,
+              const vec3& w0 = vec3::Zero())
+      : b(m, "ball", mass, j) {
+    contact = m.add<sphere_plane_contact>("contact", cp, b.x[0], b.x[1], b.x[2], b.r);
+    m.add<spatial_force>("load", {load.x(), load.y(), load.z(), 0, 0, 0, 0, 0}, b.x[0], b.x[1], b.x[2]);
+    for (int i = 0; i < 3; ++i)
+      if (v0(i) != 0) m.add<initial_velocity>("v0_" + std::to_string(i), {v0(i)}, b.x[static_cast<std::size_t>(i)]);
+    if (w0.norm() > 0) m.add<initial_rotation>("w0", {1, 0, 0, 0, w0.x(), w0.y(), w0.z()}, b.r);
+  }
+  std::span<double> work() { return m.work(contact); }
+};
+
+/// Samples of a contact: the entry and exit times (delta crossing zero, interpolated
+/// linearly) and the peak normal force (parabola through the three largest samples).
+struct impact_record {
+  double t_in = -1, t_out = -1, prev_t = 0, prev_d = -1;
+  std::vector<double> t, n;
+  void add(double time, double delta, double force) {
+    if (prev_d <= 0 && delta > 0 && t_in < 0) t_in = prev_t + (time - prev_t) * (-prev_d) / (delta - prev_d);
+    if (prev_d > 0 && delta <= 0 && t_out < 0) t_out = prev_t + (time - prev_t) * prev_d / (prev_d - delta);
+    prev_t = time;
+    prev_d = delta;
+    t.push_back(time);
+    n.push_back(force);
+  }
+  int samples_in_contact() const {
+    return static_cast<int>(std::count_if(t.begin(), t.end(), [&](double x) { return x > t_in && x < t_out; }));
+  }
+  double peak() const {
+    const auto i = static_cast<std::size_t>(std::max_element(n.begin(), n.end()) - n.begin());
+    REQUIRE(i > 0);
+    REQUIRE(i + 1 < n.size());
+    // Parabola through (t[i-1], n[i-1]), (t[i], n[i]), (t[i+1], n[i+1]): its maximum.
+    const double t0 = t[i - 1], t1 = t[i], t2 = t[i + 1], f0 = n[i - 1], f1 = n[i], f2 = n[i + 1];
+    const double d01 = (f1 - f0) / (t1 - t0), d12 = (f2 - f1) / (t2 - t1), a = (d12 - d01) / (t2 - t0);
+    // Newton form p(t) = f0 + d01 (t - t0) + a (t - t0)(t - t1); p' = 0 at tp.
+    const double tp = 0.5 * (t0 + t1) - d01 / (2 * a);
+    return f0 + d01 * (tp - t0) + a * (tp - t0) * (tp - t1);
+  }
+};
+
+/// Hertz's closed forms for an impact at speed v with effective mass m and k
+/// (Johnson 1985, section 11.4): delta_max, F_max and the contact time.
+struct hertz_impact {
+  double delta_max, f_max, t_c;
+  hertz_impact(double m, double k, double v) {
+    delta_max = std::pow(5 * m * v * v / (4 * k), 0.4);
+    f_max = k * std::pow(delta_max, 1.5);
+    // int_0^1 dx / sqrt(1 - x^2.5) = Gamma(1 + 1/2.5) Gamma(1/2) / Gamma(1/2.5 + 1/2).
+    t_c = 2 * delta_max / v * std::tgamma(1.4) * std::tgamma(0.5) / std::tgamma(0.9);
+  }
 };
 
 /// Central-difference check of CSPHPL's K and C at a state, with a given OLD state
@@ -95,6 +162,102 @@ void check_friction_jacobian(const sphere_plane_contact& e, const local_input<sp
 }  // namespace
 
 TEST_SUITE("spatial/sphere contact") {
+  TEST_CASE("CSPHPL: a ball resting on the floor penetrates m g / k (linear) and (m g / k)^(2/3) (Hertz law)") {
+    const double mass = 2.0, r = 0.1, j = 0.4 * mass * r * r;
+    SUBCASE("linear") {
+      const double k = 1e5, c = std::sqrt(k * mass);  // half the critical damping
+      floor_scene sc(mass, j, on_floor(r, r, 0, k, c, 0.5, 1e5, 0), {0, 0, -mass * g}, vec3::Zero());
+      simulation<contact_model, alpha_family> sim(sc.m, alpha_family(hht{-0.05}));
+      sim.run({.end = 1.0, .out = 0.1, .smax = 1e-3, .newton = tight_newton});
+      CHECK(sc.work()[0] == doctest::Approx(mass * g / k).epsilon(1e-8));
+      CHECK(sc.work()[1] == doctest::Approx(mass * g).epsilon(1e-8));
+      CHECK(sc.work()[3] == 1.0);
+    }
+    SUBCASE("Hertz (Hunt-Crossley damping, zero at rest)") {
+      const double k = 1e7, alpha = 40;
+      floor_scene sc(mass, j, on_floor(r, r, 2, k, alpha, 0, 0, 0), {0, 0, -mass * g}, vec3::Zero());
+      simulation<contact_model, alpha_family> sim(sc.m, alpha_family(hht{-0.05}));
+      sim.run({.end = 1.0, .out = 0.1, .smax = 1e-3, .newton = tight_newton});
+      CHECK(sc.work()[0] == doctest::Approx(std::pow(mass * g / k, 2.0 / 3.0)).epsilon(1e-8));
+      CHECK(sc.work()[1] == doctest::Approx(mass * g).epsilon(1e-8));
+    }
+  }
+
+  TEST_CASE("CSPHPL: an elastic Hertz impact has Hertz's peak force and contact time; STEPMD resolves it under "
+            "error control") {
+    const double mass = 1.0, r = 0.1, k = 1e7, v = 1.0;
+    const hertz_impact ref(mass, k, v);
+    auto run = [&](bool ignore, double drltx) {
+      floor_scene sc(mass, 0.4 * mass * r * r, on_floor(r + 1e-3, r, 1, k, 0, 0, 0, mass), vec3::Zero(), {0, 0, -v});
+      simulation<contact_model, alpha_family> sim(sc.m, alpha_family(hht{-0.05}));
+      impact_record rec;
+      sim.on_output([&](const auto& s) { rec.add(s.time(), sc.work()[0], sc.work()[1]); });
+      sim.run({.end = 0.012, .out = 0, .smax = 1e-3, .ignore = ignore, .newton = tight_newton, .error_control = true,
+               .drltx = drltx});
+      return std::pair{rec, sim.v(sc.b.x[2])};
+    };
+    const auto [rec, v_out] = run(false, 1e-6);
+    CAPTURE(ref.f_max);
+    CAPTURE(ref.t_c);
+    MESSAGE("Hertz impact under error control (DRLTX 1e-6): F_max ", rec.peak(), " (Hertz ", ref.f_max, "), t_c ",
+            rec.t_out - rec.t_in, " (Hertz ", ref.t_c, "), ", rec.samples_in_contact(), " steps in contact");
+    CHECK(rec.peak() == doctest::Approx(ref.f_max).epsilon(1e-4));
+    CHECK(rec.t_out - rec.t_in == doctest::Approx(ref.t_c).epsilon(1e-4));
+    CHECK(v_out == doctest::Approx(v).epsilon(1e-3));  // elastic: the ball leaves with its approach speed
+    // A loose tolerance: STEPMD (t_c / 20 in contact, entering at most delta* / 10 deep)
+    // still resolves the impact; without it (IGNORE) the error control alone does not.
+    const auto [loose, v_loose] = run(false, 1e-1);
+    const auto [blind, v_blind] = run(true, 1e-1);
+    MESSAGE("DRLTX 0.1: with STEPMD ", loose.samples_in_contact(), " steps in contact, F_max ", loose.peak(),
+            ", v_out ", v_loose, "; IGNORE: ", blind.samples_in_contact(), " steps, v_out ", v_blind);
+    CHECK(loose.samples_in_contact() >= 19);
+    CHECK(loose.peak() == doctest::Approx(ref.f_max).epsilon(2e-2));
+    CHECK(loose.t_out - loose.t_in == doctest::Approx(ref.t_c).epsilon(2e-2));
+    CHECK(blind.samples_in_contact() < loose.samples_in_contact());
+  }
+
+  TEST_CASE("CSPHSP: a Hertz impact of two free spheres has Hertz's peak force and contact time with the "
+            "effective mass m1 m2 / (m1 + m2)") {
+    const double m1 = 1.0, m2 = 3.0, r1 = 0.1, r2 = 0.05, k = 1e7, v1 = 1.0, v2 = -0.5, meff = m1 * m2 / (m1 + m2);
+    const hertz_impact ref(meff, k, v1 - v2);
+    contact_model m;
+    const ball a(m, "a", m1, 0.4 * m1 * r1 * r1), b(m, "b", m2, 0.4 * m2 * r2 * r2);
+    const auto c = m.add<sphere_sphere_contact>("contact", {0, 0, 0, 0, 0, 0, r1, r1 + r2 + 1e-3, 0, 0, 0, 0, 0, r2, 1, k, 0, meff},
+                                                a.x[0], a.x[1], a.x[2], a.r, b.x[0], b.x[1], b.x[2], b.r);
+    m.add<initial_velocity>("va", {v1}, a.x[0]);
+    m.add<initial_velocity>("vb", {v2}, b.x[0]);
+    simulation<contact_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    impact_record rec;
+    sim.on_output([&](const auto& s) { rec.add(s.time(), m.work(c)[0], m.work(c)[1]); });
+    sim.run({.end = 0.01, .out = 0, .smax = 1e-3, .newton = tight_newton, .error_control = true, .drltx = 1e-6});
+    MESSAGE("two spheres: F_max ", rec.peak(), " (Hertz ", ref.f_max, "), t_c ", rec.t_out - rec.t_in, " (Hertz ",
+            ref.t_c, ")");
+    CHECK(rec.peak() == doctest::Approx(ref.f_max).epsilon(1e-4));
+    CHECK(rec.t_out - rec.t_in == doctest::Approx(ref.t_c).epsilon(1e-4));
+    // Elastic central impact: the velocities are exchanged as for elastic balls (Goldstein, section 3.10).
+    CHECK(sim.v(a.x[0]) == doctest::Approx((v1 * (m1 - m2) + 2 * m2 * v2) / (m1 + m2)).epsilon(1e-3));
+    CHECK(sim.v(b.x[0]) == doctest::Approx((v2 * (m2 - m1) + 2 * m1 * v1) / (m1 + m2)).epsilon(1e-3));
+  }
+
+  TEST_CASE("CSPHPL: the Hunt-Crossley rebound speed satisfies the exact restitution relation of the model") {
+    const double mass = 0.5, r = 0.05, k = 5e6, v = 2.0, alpha = 0.15, chi = 1.5 * alpha;
+    floor_scene sc(mass, 0.4 * mass * r * r, on_floor(r + 1e-3, r, 2, k, alpha, 0, 0, mass), vec3::Zero(), {0, 0, -v});
+    simulation<contact_model, alpha_family> sim(sc.m, alpha_family(hht{-0.05}));
+    sim.run({.end = 0.01, .out = 0, .smax = 1e-3, .newton = tight_newton, .error_control = true, .drltx = 1e-7});
+    // chi v_out + ln(1 - chi v_out) = -chi v + ln(1 + chi v), 0 < v_out < v: bisection.
+    const double rhs = -chi * v + std::log1p(chi * v);
+    double lo = 0, hi = v;
+    for (int i = 0; i < 200; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (chi * mid + std::log1p(-chi * mid) > rhs ? lo : hi) = mid;
+    }
+    const double e = lo / v;
+    MESSAGE("Hunt-Crossley: e = ", doctest::toString(sim.v(sc.b.x[2]) / v), " (exact ", doctest::toString(e), ", Lankarani-Nikravesh 1 - alpha v = ",
+            1 - alpha * v, ")");
+    CHECK(sc.work()[0] < 0);
+    CHECK(sim.v(sc.b.x[2]) / v == doctest::Approx(e).epsilon(1e-4));
+  }
+
   TEST_CASE("CSPHPL and CSPHSP: the Jacobian matches central differences, with friction sticking and sliding") {
     const sphere_plane_contact e(sphere_plane_contact::example());
     local_input<sphere_plane_contact> at;
