@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -44,7 +45,7 @@ using pradis_spatial_tests::tight_newton;
 namespace {
 constexpr double g = 9.81;
 using contact_model = model<rigid_body, sphere_plane_contact, sphere_sphere_contact, spatial_force, initial_velocity,
-                            initial_rotation>;
+                            initial_rotation, rotational_spring_damper>;
 
 /// A rigid ball body (centre of mass at the reference point) with translational DOFs x
 /// and rotational node r.
@@ -256,6 +257,82 @@ TEST_SUITE("spatial/sphere contact") {
             1 - alpha * v, ")");
     CHECK(sc.work()[0] < 0);
     CHECK(sim.v(sc.b.x[2]) / v == doctest::Approx(e).epsilon(1e-4));
+  }
+
+  TEST_CASE("CSPHPL: a ball thrown sliding without spin rolls after 2 v0 / (7 mu g) with 5/7 v0") {
+    const double mass = 1.0, r = 0.1, j = 0.4 * mass * r * r, k = 1e6, mu = 0.2, v0 = 1.0, h = 1e-3;
+    const double t_roll = 2 * v0 / (7 * mu * g);
+    floor_scene sc(mass, j, on_floor(r - mass * g / k, r, 0, k, 2 * std::sqrt(k * mass), mu, 1e6, 0),
+                   {0, 0, -mass * g}, {v0, 0, 0});
+    simulation<contact_model, alpha_family> sim(sc.m, alpha_family(hht{-0.3}));
+    double t_stick = -1, v1 = 0, v2 = 0;
+    const double t1 = 0.03, t2 = 0.12;  // both while sliding
+    sim.on_output([&](const auto& s) {
+      if (t_stick < 0 && s.time() > 0 && sc.work()[3] == 1.0) t_stick = s.time();
+      if (std::abs(s.time() - t1) < 0.5 * h) v1 = s.v(sc.b.x[0]);
+      if (std::abs(s.time() - t2) < 0.5 * h) v2 = s.v(sc.b.x[0]);
+    });
+    sim.run({.end = 0.6, .out = 0, .smax = h, .newton = tight_newton});
+    const vec3 w = node_angular_velocity(sim, sc.b.r);
+    MESSAGE("rolling: stick at ", t_stick, " (t* = ", t_roll, "), v = ", sim.v(sc.b.x[0]), " (5/7 v0 = ", 5 * v0 / 7,
+            "), omega_y R = ", w.y() * r);
+    CHECK(std::abs(t_stick - t_roll) < 2 * h);
+    // While sliding the friction force is mu m g: the ball decelerates with mu g (Coulomb).
+    CHECK((v1 - v2) / (t2 - t1) == doctest::Approx(mu * g).epsilon(1e-6));
+    CHECK(sim.v(sc.b.x[0]) == doctest::Approx(5 * v0 / 7).epsilon(1e-4));
+    CHECK(w.y() * r == doctest::Approx(5 * v0 / 7).epsilon(1e-4));
+    CHECK(sc.work()[2] < 1e-4 * mu * mass * g);  // rolling needs no friction force
+  }
+
+  TEST_CASE("CSPHPL: a ball held from rolling does not creep on an incline under static friction and slides with "
+            "g (sin - mu cos) beyond it") {
+    const double mass = 1.0, r = 0.1, k = 1e6, kt = 1e6, krot = 1e4, h = 1e-3;
+    const double pi = std::numbers::pi;
+    // The incline is the floor with gravity tilted by theta (down-slope along +x);
+    // RSD3 to the ground holds the ball from rolling.
+    double friction = 0, stick = 0;
+    auto scene = [&](double theta, double mu, double end, double& x_mid, double& v_mid) {
+      const vec3 load = mass * g * vec3(std::sin(theta), 0, -std::cos(theta));
+      auto sc = std::make_unique<floor_scene>(
+          mass, 0.4 * mass * r * r, on_floor(r - mass * g * std::cos(theta) / k, r, 0, k, 2 * std::sqrt(k * mass), mu, kt, 0),
+          load, vec3::Zero());
+      const dof G = sc->m.ground();
+      sc->m.add<rotational_spring_damper>("lock", {krot, 2 * std::sqrt(krot * 0.4 * mass * r * r)}, G, G, G, sc->b.r);
+      simulation<contact_model, alpha_family> sim(sc->m, alpha_family(hht{-0.3}));
+      sim.on_output([&](const auto& s) {
+        if (std::abs(s.time() - 0.5 * end) < 0.5 * h) {
+          x_mid = s.u(sc->b.x[0]);
+          v_mid = s.v(sc->b.x[0]);
+        }
+      });
+      sim.run({.end = end, .out = 0, .smax = h, .newton = tight_newton});
+      friction = sc->work()[2];
+      stick = sc->work()[3];
+      return std::pair{sim.u(sc->b.x[0]), sim.v(sc->b.x[0])};
+    };
+    SUBCASE("mu = 0.8 > tan 20 deg: at rest, the stick springs (kt and krot / R^2 in series) carry m g sin") {
+      // mu is above twice the static ratio tan 20 deg, so that the overshoot of the
+      // suddenly applied load (twice the static force) does not slip either.
+      const double theta = 20 * pi / 180;
+      double x_mid = 0, v_mid = 0;
+      const auto [x_end, v_end] = scene(theta, 0.8, 2.0, x_mid, v_mid);
+      const double f = mass * g * std::sin(theta), x_static = f * (1 / kt + r * r / krot);
+      MESSAGE("static friction: x(1) = ", x_mid, ", x(2) - x(1) = ", x_end - x_mid, " (static ", x_static, ")");
+      CHECK(std::abs(x_end - x_mid) < 1e-12);
+      CHECK(x_end == doctest::Approx(x_static).epsilon(1e-6));
+      CHECK(std::abs(v_end) < 1e-9);
+      CHECK(friction == doctest::Approx(f).epsilon(1e-9));
+      CHECK(stick == 1.0);
+    }
+    SUBCASE("mu = 0.2 < tan 30 deg: slides with a = g (sin - mu cos)") {
+      const double theta = 30 * pi / 180, mu = 0.2, a = g * (std::sin(theta) - mu * std::cos(theta));
+      double x_mid = 0, v_mid = 0;
+      const auto [x_end, v_end] = scene(theta, mu, 1.0, x_mid, v_mid);
+      MESSAGE("sliding: a = ", (v_end - v_mid) / 0.5, " (g (sin - mu cos) = ", a, ")");
+      CHECK((v_end - v_mid) / 0.5 == doctest::Approx(a).epsilon(1e-6));
+      CHECK(friction == doctest::Approx(mu * mass * g * std::cos(theta)).epsilon(1e-6));
+      CHECK(stick == 0.0);
+    }
   }
 
   TEST_CASE("CSPHPL and CSPHSP: the Jacobian matches central differences, with friction sticking and sliding") {
