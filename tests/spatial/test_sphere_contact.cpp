@@ -23,7 +23,9 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <iostream>
 #include <memory>
 #include <numbers>
@@ -128,6 +130,23 @@ struct hertz_impact {
     t_c = 2 * delta_max / v * std::tgamma(1.4) * std::tgamma(0.5) / std::tgamma(0.9);
   }
 };
+
+/// Runs f and checks that it throws pradis::error with the code, naming the element
+/// type and containing the text.
+template <class F>
+void check_error(F&& f, error_code code, const std::string& type, const std::string& text) {
+  bool thrown = false;
+  try {
+    f();
+  } catch (const pradis::error& e) {
+    thrown = true;
+    CAPTURE(e.what());
+    CHECK(e.code() == code);
+    CHECK(std::string(e.what()).find(type) != std::string::npos);
+    CHECK(std::string(e.what()).find(text) != std::string::npos);
+  }
+  CHECK(thrown);
+}
 
 /// Central-difference check of CSPHPL's K and C at a state, with a given OLD state
 /// vector (the friction anchor), which the library checker keeps at zero.
@@ -333,6 +352,101 @@ TEST_SUITE("spatial/sphere contact") {
       CHECK(friction == doctest::Approx(mu * mass * g * std::cos(theta)).epsilon(1e-6));
       CHECK(stick == 0.0);
     }
+  }
+
+  TEST_CASE("CSPHPL: a fast ball with large fixed steps does not pass through the plane: code 75 cuts the step, "
+            "and at SMIN the run stops with code 75") {
+    const double mass = 1.0, r = 0.01, k = 1e9, v = 50, h = 1e-3;  // one step would carry the ball 5 R
+    auto make = [&](double step_mass = 0) {
+      return std::make_unique<floor_scene>(mass, 0.4 * mass * r * r, on_floor(r + 0.02, r, 0, k, 0, 0, 0, step_mass),
+                                           vec3::Zero(), vec3(0, 0, -v));
+    };
+    {
+      auto sc = make();
+      simulation<contact_model, alpha_family> sim(sc->m, alpha_family(hht{-0.05}));
+      double lowest = 1;
+      sim.on_output([&](const auto& s) { lowest = std::min(lowest, r + 0.02 + s.u(sc->b.x[2])); });
+      const run_statistics st = sim.run({.end = 0.01, .out = 0, .smax = h, .newton = tight_newton});
+      MESSAGE("tunnelling: ", st.rejected_steps, " steps cut, lowest centre height ", lowest, " (R = ", r,
+              "), rebound speed ", sim.v(sc->b.x[2]));
+      CHECK(st.rejected_steps > 0);
+      CHECK(lowest > 0);  // the centre never reached the plane
+      // It bounced back; the unresolved stiff impact (t_c = pi sqrt(m / k) = 1e-4 s, a tenth
+      // of the step) is not elastic in the discrete solution, hence no check of the speed.
+      CHECK(sim.v(sc->b.x[2]) > 0);
+      CHECK(r + 0.02 + sim.u(sc->b.x[2]) > r);
+    }
+    {
+      // With the mass for STEPMD the same fixed-step run resolves the impact with steps of
+      // t_c / 20 (t_c = pi sqrt(m / k), the half period of the linear contact): the rebound
+      // speed is then within 2 % (the step that crosses delta = 0, where the stiffness
+      // jumps, loses about 1.5 %; the trapezoidal rule gives the same), without it 50 % off.
+      auto sc = make(mass);
+      simulation<contact_model, alpha_family> sim(sc->m, alpha_family(hht{-0.05}));
+      const run_statistics st = sim.run({.end = 0.01, .out = 0, .smax = h, .newton = tight_newton});
+      MESSAGE("with STEPMD: ", st.rejected_steps, " steps cut, rebound speed ", sim.v(sc->b.x[2]));
+      CHECK(st.rejected_steps == 0);
+      CHECK(sim.v(sc->b.x[2]) == doctest::Approx(v).epsilon(2e-2));
+    }
+    {
+      auto sc = make();
+      simulation<contact_model, alpha_family> sim(sc->m, alpha_family(hht{-0.05}));
+      check_error([&] { sim.run({.end = 0.01, .out = 0, .smax = h, .smin = h, .newton = tight_newton}); },
+                  error_code::singular_situation, "CSPHPL", "tunnelling");
+    }
+  }
+
+  TEST_CASE("CSPHPL and CSPHSP: bad parameters are code 100 naming the parameter") {
+    auto plane = [](int i, double x) {
+      sphere_plane_contact::parameters p = sphere_plane_contact::example();
+      std::array<double, 19> v{};
+      std::memcpy(v.data(), &p, sizeof p);
+      v[static_cast<std::size_t>(i)] = x;
+      return [v] { testing::jacobian_checker<sphere_plane_contact> chk{sphere_plane_contact::from_parameters(v)}; };
+    };
+    check_error(plane(6, 0.0), error_code::invalid_parameter, "CSPHPL", "radius R");
+    check_error(plane(6, -1.0), error_code::invalid_parameter, "CSPHPL", "radius R");
+    check_error(plane(0, std::nan("")), error_code::invalid_parameter, "CSPHPL", "finite");
+    {
+      sphere_plane_contact::parameters p = sphere_plane_contact::example();
+      p.nx = p.ny = p.nz = 0;
+      check_error([&] { testing::jacobian_checker<sphere_plane_contact> chk{sphere_plane_contact(p)}; },
+                  error_code::invalid_parameter, "CSPHPL", "normal n is zero");
+    }
+    check_error(plane(13, 3.0), error_code::invalid_parameter, "CSPHPL", "normal law");
+    check_error(plane(13, 0.5), error_code::invalid_parameter, "CSPHPL", "normal law");
+    check_error(plane(14, -1e3), error_code::invalid_parameter, "CSPHPL", "stiffness k");
+    check_error(plane(14, 0.0), error_code::invalid_parameter, "CSPHPL", "stiffness k");
+    check_error(plane(15, -0.1), error_code::invalid_parameter, "CSPHPL", "damping c");
+    check_error(plane(16, -0.2), error_code::invalid_parameter, "CSPHPL", "friction coefficient mu");
+    check_error(plane(17, 0.0), error_code::invalid_parameter, "CSPHPL", "stick stiffness kt");
+    check_error(plane(17, -1.0), error_code::invalid_parameter, "CSPHPL", "stick stiffness kt");
+    check_error(plane(18, -1.0), error_code::invalid_parameter, "CSPHPL", "step-recommendation mass");
+    auto spheres = [](int i, double x) {
+      sphere_sphere_contact::parameters p = sphere_sphere_contact::example();
+      std::array<double, 18> v{};
+      std::memcpy(v.data(), &p, sizeof p);
+      v[static_cast<std::size_t>(i)] = x;
+      return [v] { testing::jacobian_checker<sphere_sphere_contact> chk{sphere_sphere_contact::from_parameters(v)}; };
+    };
+    check_error(spheres(6, 0.0), error_code::invalid_parameter, "CSPHSP", "radius R1");
+    check_error(spheres(13, -0.5), error_code::invalid_parameter, "CSPHSP", "radius R2");
+    check_error(spheres(9, std::nan("")), error_code::invalid_parameter, "CSPHSP", "finite");
+    check_error(spheres(14, 7.0), error_code::invalid_parameter, "CSPHSP", "normal law");
+    check_error(spheres(15, -1.0), error_code::invalid_parameter, "CSPHSP", "stiffness k");
+    check_error(spheres(16, -1.0), error_code::invalid_parameter, "CSPHSP", "damping c");
+    check_error(spheres(17, -1.0), error_code::invalid_parameter, "CSPHSP", "step-recommendation mass");
+  }
+
+  TEST_CASE("CSPHSP: two spheres pushed through each other give code 75 (tunnelling)") {
+    sphere_sphere_contact::parameters p = sphere_sphere_contact::example();
+    testing::jacobian_checker<sphere_sphere_contact> chk{sphere_sphere_contact(p)};
+    local_input<sphere_sphere_contact> at;
+    at.u(12) = at.u(13) = 1.0;
+    // Body 2's centre moved onto body 1's: the penetration exceeds the smaller radius.
+    const vec3 c1 = vec3(p.x1, p.y1, p.z1) + vec3(p.a1x, p.a1y, p.a1z), c2 = vec3(p.x2, p.y2, p.z2) + vec3(p.a2x, p.a2y, p.a2z);
+    for (int i = 0; i < 3; ++i) at.u(6 + i) = c1(i) - c2(i);
+    check_error([&] { chk.flows(at); }, error_code::singular_situation, "CSPHSP", "tunnelling");
   }
 
   TEST_CASE("CSPHPL and CSPHSP: the Jacobian matches central differences, with friction sticking and sliding") {

@@ -72,8 +72,10 @@ inline double contact_energy(contact_law law, double k, double delta) {
 ///     Hertz:  delta* = (5 m v^2 / (4 k))^(2/5),        t_c = 2.94 delta* / v
 ///
 /// (Johnson, Contact Mechanics, 1985, section 11.4). In contact the step is t_c / 20;
-/// approaching (gap > 0, delta' > 0) it is (gap + delta* / 10) / delta', so that a
-/// step enters the contact at most delta* / 10 deep. Otherwise: no recommendation.
+/// out of contact it is (gap + delta* / 10) / |delta'|: approaching, a step enters the
+/// contact at most delta* / 10 deep; separating, the step grows by about a factor 2
+/// per step after the contact instead of jumping back to SMAX at once. At rest
+/// (delta' = 0, no contact): no recommendation.
 inline double contact_step(contact_law law, double k, double m, double delta, double rate) {
   constexpr double none = std::numeric_limits<double>::infinity();
   if (!(m > 0) || !(k > 0)) return none;
@@ -88,7 +90,7 @@ inline double contact_step(contact_law law, double k, double m, double delta, do
     tc = 2.94 * scale / v;
   }
   if (delta > 0) return tc / 20.0;
-  if (rate > 0) return (-delta + 0.1 * scale) / rate;
+  if (rate != 0) return (-delta + 0.1 * scale) / std::abs(rate);
   return none;
 }
 
