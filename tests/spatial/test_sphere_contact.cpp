@@ -397,6 +397,9 @@ TEST_SUITE("spatial/sphere contact") {
   }
 
   TEST_CASE("CSPHPL and CSPHSP: bad parameters are code 100 naming the parameter") {
+    // The typed parameters are the PAR vector, in order (copied below into a flat array).
+    static_assert(sizeof(sphere_plane_contact::parameters) == sphere_plane_contact::passport.par * sizeof(double));
+    static_assert(sizeof(sphere_sphere_contact::parameters) == sphere_sphere_contact::passport.par * sizeof(double));
     auto plane = [](int i, double x) {
       sphere_plane_contact::parameters p = sphere_plane_contact::example();
       std::array<double, 19> v{};
