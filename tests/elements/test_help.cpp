@@ -40,6 +40,8 @@ constexpr std::string_view code100_situation(std::string_view name) {
   if (name == "PRI3X" || name == "FIX3X") return "a reference vector is parallel to its axis";
   if (name == "PTL3X") return "the direction is zero";
   if (name == "PTP3X") return "the normal is zero";
+  if (name == "CSPHPL") return "R <= 0";
+  if (name == "CSPHSP") return "R1 <= 0";
   if (name == "PIN2X") return "a parameter is not finite";
   if (name == "ELLPL") return "mu_k > mu_s";
   if (name == "CAM") return "k <= 0, c < 0";
@@ -82,7 +84,8 @@ void check_special() {
     CHECK(special.find("code 90") != std::string::npos);
   if (name == "LINKD" || name == "BODY3" || name == "F3B" || name == "M3B" || name == "SD3" || name == "RSD3" ||
       name == "SPH3" || name == "REV3" || name == "BEAM3" || name == "BEAMI3" || name == "SHC3" || name == "HVOL" ||
-      name == "HCYL" || name == "HACC" || name == "ELLPL" || name == "PNVOL" || name == "PNCHP" || name == "PNCYL" || name == "PNORF")
+      name == "HCYL" || name == "HACC" || name == "ELLPL" || name == "PNVOL" || name == "PNCHP" || name == "PNCYL" ||
+      name == "PNORF" || name == "CSPHPL" || name == "CSPHSP")
     CHECK(special.find("code 75") != std::string::npos);
   if (name == "ROT0") CHECK(special.find("code 90") != std::string::npos);
 }
@@ -96,7 +99,7 @@ void check_all_special(pradis::type_list<Es...>) {
 
 TEST_SUITE("elements/help") {
   TEST_CASE("the help text of every library element names its code-100 situations (and 90 / 75 where they apply)") {
-    static_assert(pradis::elements::library_elements::size == 75);
+    static_assert(pradis::elements::library_elements::size == 77);
     check_all_special(pradis::elements::library_elements{});
   }
 }

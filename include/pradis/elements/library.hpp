@@ -49,6 +49,7 @@
 #include "pradis/elements/spatial/exact_frame_joints.hpp"
 #include "pradis/elements/spatial/exact_joints.hpp"
 #include "pradis/elements/spatial/spring_damper.hpp"
+#include "pradis/elements/spatial/sphere_contact.hpp"
 // --- end of spatial connecting elements ---
 
 namespace pradis::elements {
@@ -71,6 +72,9 @@ using spatial_connector_elements =
               exact_spherical_joint, exact_revolute_joint, exact_universal_joint, exact_cylindrical_joint,
               exact_prismatic_joint, exact_fixed_joint, exact_point_on_line, exact_point_on_plane>;
 // --- end of spatial connecting elements ---
+/// Spatial contact: a body-fixed sphere against a fixed plane (with Coulomb friction) or
+/// against another sphere (docs/contact.md).
+using spatial_contact_elements = type_list<sphere_plane_contact, sphere_sphere_contact>;
 /// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md).
 using beam_elements = type_list<elastic_beam, beam_inertia>;
 /// Hydraulics (docs/domains.md): pressure is the velocity-level unknown, volume flow the flow.
@@ -87,7 +91,7 @@ using pneumatic_elements = type_list<gas_chamber, gas_piston_chamber, pneumatic_
                                      pneumatic_pressure_source, pneumatic_flow_source>;
 /// Every element type of the built-in library.
 using library_elements = concat_t<mech1d_elements, planar_elements, spatial_elements, spatial_connector_elements,
-                                  beam_elements, hydraulic_elements, electric_elements, pneumatic_elements>;
+                                  spatial_contact_elements, beam_elements, hydraulic_elements, electric_elements, pneumatic_elements>;
 
 }  // namespace pradis::elements
 
