@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <span>
 #include <string>
 #include <string_view>
@@ -57,6 +58,17 @@ template <class E, class Model>
 std::optional<pradis::error> flat_add_error(Model& md, const std::string& name, std::span<const pradis::dof> dofs,
                                             std::span<const double> params) {
   return error_from([&] { md.template add_flat<E>(name, dofs, params); });
+}
+
+/// Passes a finite-difference Jacobian check result (testing::jacobian_check_result)
+/// through: on failure it records the check's table as a failed CHECK. Returns r.ok.
+template <class Result>
+bool jacobian_passes(const Result& r) {
+  if (r.ok) return true;
+  std::ostringstream os;
+  r.print(os);
+  FAIL_CHECK(os.str());
+  return false;
 }
 
 /// Discrete angular frequency of the trapezoidal rule (average-acceleration

@@ -123,13 +123,7 @@ TEST_SUITE("elements/CAM") {
       if (!chk.element().admissible(in)) continue;
       ++checked;
       if (chk.flows(in).norm() > 0) ++in_contact;
-      const auto r = chk.check(in);
-      if (!r.ok) {
-        std::ostringstream os;
-        r.print(os);
-        FAIL_CHECK(os.str());
-        break;
-      }
+      if (!jacobian_passes(chk.check(in))) break;
     }
     CHECK(in_contact > 50);
     CHECK(checked - in_contact > 50);

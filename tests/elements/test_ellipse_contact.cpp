@@ -245,13 +245,7 @@ TEST_SUITE("elements/ELLPL") {
         const auto f = chk.flows(in);
         if (f.norm() == 0) continue;
         ++in_contact;
-        const auto r = chk.check(in);
-        if (!r.ok) {
-          std::ostringstream os;
-          r.print(os);
-          FAIL_CHECK(os.str());
-          break;
-        }
+        if (!jacobian_passes(chk.check(in))) break;
       }
       CHECK(in_contact > 100);
     }

@@ -16,6 +16,14 @@
 
 namespace lang_test {
 
+/// Column of a results table by label (1-based: column 0 is the time).
+inline std::size_t column(const pradis::io::table& t, const std::string& label) {
+  for (std::size_t c = 0; c < t.names().size(); ++c)
+    if (t.names()[c] == label) return c + 1;
+  FAIL("no column " << label);
+  return 0;
+}
+
 /// examples/models of this source tree (found from this file's path).
 inline std::filesystem::path models_dir() {
   return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "examples" / "models";

@@ -10,14 +10,7 @@
 
 using namespace pradis;
 
-namespace {
-std::size_t column(const io::table& t, const std::string& label) {
-  for (std::size_t c = 0; c < t.names().size(); ++c)
-    if (t.names()[c] == label) return c + 1;
-  FAIL("no column " << label);
-  return 0;
-}
-}  // namespace
+using lang_test::column;
 
 TEST_SUITE("lang/contact") {
   TEST_CASE("examples/models/rolling_ball.prd: the thrown ball rolls at 5/7 v0 from 2 v0 / (7 mu g)") {

@@ -18,13 +18,7 @@ using lang_test::small_with;
 namespace {
 using lang_test::scratch_dir;
 using lang_test::slurp;
-/// Column of a results table by label.
-std::size_t column(const io::table& t, const std::string& label) {
-  for (std::size_t c = 0; c < t.names().size(); ++c)
-    if (t.names()[c] == label) return c + 1;
-  FAIL("no column " << label);
-  return 0;
-}
+using lang_test::column;
 }  // namespace
 
 TEST_SUITE("lang/language") {
