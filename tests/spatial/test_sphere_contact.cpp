@@ -242,7 +242,7 @@ TEST_SUITE("spatial/sphere contact") {
     const hertz_impact ref(meff, k, v1 - v2);
     contact_model m;
     const ball a(m, "a", m1, 0.4 * m1 * r1 * r1), b(m, "b", m2, 0.4 * m2 * r2 * r2);
-    const auto c = m.add<sphere_sphere_contact>("contact", {0, 0, 0, 0, 0, 0, r1, r1 + r2 + 1e-3, 0, 0, 0, 0, 0, r2, 1, k, 0, meff},
+    const auto c = m.add<sphere_sphere_contact>("contact", {0, 0, 0, 0, 0, 0, r1, r1 + r2 + 1e-3, 0, 0, 0, 0, 0, r2, 1, k, 0, meff, 0, 0},
                                                 a.x[0], a.x[1], a.x[2], a.r, b.x[0], b.x[1], b.x[2], b.r);
     m.add<initial_velocity>("va", {v1}, a.x[0]);
     m.add<initial_velocity>("vb", {v2}, b.x[0]);
@@ -427,7 +427,7 @@ TEST_SUITE("spatial/sphere contact") {
     check_error(plane(18, -1.0), error_code::invalid_parameter, "CSPHPL", "step-recommendation mass");
     auto spheres = [](int i, double x) {
       sphere_sphere_contact::parameters p = sphere_sphere_contact::example();
-      std::array<double, 18> v{};
+      std::array<double, 20> v{};
       std::memcpy(v.data(), &p, sizeof p);
       v[static_cast<std::size_t>(i)] = x;
       return [v] { testing::jacobian_checker<sphere_sphere_contact> chk{sphere_sphere_contact::from_parameters(v)}; };
@@ -439,6 +439,8 @@ TEST_SUITE("spatial/sphere contact") {
     check_error(spheres(15, -1.0), error_code::invalid_parameter, "CSPHSP", "stiffness k");
     check_error(spheres(16, -1.0), error_code::invalid_parameter, "CSPHSP", "damping c");
     check_error(spheres(17, -1.0), error_code::invalid_parameter, "CSPHSP", "step-recommendation mass");
+    check_error(spheres(18, -0.1), error_code::invalid_parameter, "CSPHSP", "friction coefficient mu");
+    check_error(spheres(19, 0.0), error_code::invalid_parameter, "CSPHSP", "stick stiffness kt");
   }
 
   TEST_CASE("CSPHSP: two spheres pushed through each other give code 75 (tunnelling)") {
@@ -479,4 +481,93 @@ TEST_SUITE("spatial/sphere contact") {
       CHECK(r2.ok);
     }
   }
+
+  TEST_CASE("CSPHSP friction: the Jacobian matches central differences with the anchor sticking and sliding") {
+    // Body 1 at (0.1, -0.2, 0.3) with sphere 1 (R1 1.5) 0.2, 0.1, -0.15 off; body 2 at
+    // (1.2, 0.4, 2.3) with sphere 2 (R2 1.5): the example penetrates by about 0.5.
+    local_input<sphere_sphere_contact> at;
+    at.u << 0.1, 0.2, 0.3, 0.1, 0.05, -0.1, -0.1, 0.1, -0.2, 0.2, -0.1, 0.1, 0.9, 1.1;
+    at.v << 0.2, -0.1, 0.3, 0.1, 0.2, -0.3, -0.2, 0.1, 0.25, -0.1, 0.3, 0.2, 0.1, -0.2;
+    const std::vector<double> old{2, 2e-5, -1e-5, 3e-5, 0.6, 0.3, 0.8, -0.7, -0.2, -0.9};
+    for (const bool sticking : {false, true}) {
+      CAPTURE(sticking);
+      sphere_sphere_contact::parameters q = sphere_sphere_contact::example();
+      if (sticking) {
+        q.mu = 50;
+        q.kt = 1e3;
+      }
+      testing::jacobian_checker<sphere_sphere_contact> chk{sphere_sphere_contact(q)};
+      std::copy(old.begin(), old.end(), chk.old_state().begin());
+      const auto f = chk.flows(at);
+      REQUIRE(chk.element().admissible(at));
+      const auto r = chk.check(at);
+      if (!r.ok) r.print(std::cerr);
+      CHECK(r.ok);
+      // Friction is on: the flows differ from the frictionless element's.
+      sphere_sphere_contact::parameters q0 = q;
+      q0.mu = 0;
+      testing::jacobian_checker<sphere_sphere_contact> plain{sphere_sphere_contact(q0)};
+      std::copy(old.begin(), old.end(), plain.old_state().begin());
+      CHECK((f - plain.flows(at)).norm() > 1e-3);
+      CHECK(chk.new_state()[0] == 2.0);
+    }
+  }
+
+  TEST_CASE("CSPHSP friction: a ball thrown sliding on a very large fixed sphere rolls after 2 v0 / (7 mu g) with 5/7 v0") {
+    // Sphere 1 (the ground, R1 = 1e5 m) is a floor to within x^2 / (2 R1) = 1e-6 m
+    // over the run; the ball as on CSPHPL's floor (Routh: 5/7 v0 at 2 v0 / (7 mu g)).
+    const double mass = 1.0, r = 0.1, j = 0.4 * mass * r * r, k = 1e6, mu = 0.2, v0 = 1.0, h = 1e-3, big = 1e5;
+    const double t_roll = 2 * v0 / (7 * mu * g), d0 = mass * g / k;
+    contact_model m;
+    const ball b(m, "ball", mass, j);
+    const dof G = m.ground();
+    const auto c = m.add<sphere_sphere_contact>(
+        "contact", {0, 0, -big, 0, 0, 0, big, 0, 0, r - d0, 0, 0, 0, r, 0, k, 2 * std::sqrt(k * mass), 0, mu, 1e6}, G, G, G,
+        G, G, G, b.x[0], b.x[1], b.x[2], b.r);
+    m.add<spatial_force>("load", {0, 0, -mass * g, 0, 0, 0, 0, 0}, b.x[0], b.x[1], b.x[2]);
+    m.add<initial_velocity>("v0", {v0}, b.x[0]);
+    simulation<contact_model, alpha_family> sim(m, alpha_family(hht{-0.3}));
+    double t_stick = -1;
+    sim.on_output([&](const auto& s) {
+      if (t_stick < 0 && s.time() > 0 && m.work(c)[3] == 1.0) t_stick = s.time();
+    });
+    sim.run({.end = 0.6, .out = 0, .smax = h, .newton = tight_newton});
+    const vec3 w = node_angular_velocity(sim, b.r);
+    CHECK(std::abs(t_stick - t_roll) < 2 * h);
+    CHECK(sim.v(b.x[0]) == doctest::Approx(5 * v0 / 7).epsilon(1e-4));
+    CHECK(w.y() * r == doctest::Approx(5 * v0 / 7).epsilon(1e-4));
+    // Rolling without slip: the contact point's velocity v - w R (with the
+    // contact point's arm R - delta/2) vanishes (measured 3.9e-6 m/s).
+    CHECK(std::abs(sim.v(b.x[0]) - w.y() * (r - 0.5 * d0)) < 1e-5 * v0);
+    CHECK(m.work(c)[3] == 1.0);
+  }
+
+  TEST_CASE("CSPHSP friction: a ball held from rolling on a fixed sphere at 20 degrees from its top does not creep") {
+    // Static friction holds it while tan 20 deg = 0.36 < mu (0.8, above twice the
+    // ratio: the suddenly applied load overshoots to twice its static value).
+    const double mass = 1.0, r = 0.1, k = 1e6, kt = 1e6, krot = 1e4, h = 1e-3, big = 1.0, th = 20 * std::numbers::pi / 180;
+    const vec3 dir(std::sin(th), 0, std::cos(th));
+    const vec3 c0 = (big + r - mass * g * std::cos(th) / k) * dir;
+    contact_model m;
+    const ball b(m, "ball", mass, 0.4 * mass * r * r);
+    const dof G = m.ground();
+    const auto c = m.add<sphere_sphere_contact>(
+        "contact", {0, 0, 0, 0, 0, 0, big, c0.x(), c0.y(), c0.z(), 0, 0, 0, r, 0, k, 2 * std::sqrt(k * mass), 0, 0.8, kt},
+        G, G, G, G, G, G, b.x[0], b.x[1], b.x[2], b.r);
+    m.add<spatial_force>("load", {0, 0, -mass * g, 0, 0, 0, 0, 0}, b.x[0], b.x[1], b.x[2]);
+    m.add<rotational_spring_damper>("lock", {krot, 2 * std::sqrt(krot * 0.4 * mass * r * r)}, G, G, G, b.r);
+    simulation<contact_model, alpha_family> sim(m, alpha_family(hht{-0.3}));
+    vec3 mid = vec3::Zero();
+    sim.on_output([&](const auto& s) {
+      if (std::abs(s.time() - 1.0) < 0.5 * h) mid = b.position(s);
+    });
+    sim.run({.end = 2.0, .out = 0, .smax = h, .newton = tight_newton});
+    CHECK((b.position(sim) - mid).norm() < 1e-12);
+    CHECK(m.work(c)[3] == 1.0);
+    // m g sin(20 deg) along the normal of the start; the ball settles into the
+    // contact by m g cos / k + the stick stretch (~1e-5 m), which turns the normal by
+    // ~1e-5 rad on R1 = 1 m: 1.5e-5 of the force (measured).
+    CHECK(m.work(c)[2] == doctest::Approx(mass * g * std::sin(th)).epsilon(1e-4));
+  }
 }
+

@@ -15,6 +15,7 @@
 #include "pradis/core/element.hpp"
 #include "pradis/elements/spatial/attachment.hpp"
 #include "pradis/elements/spatial/contact_law.hpp"
+#include "pradis/elements/spatial/sphere_friction.hpp"
 #include "pradis/spatial/quaternion.hpp"
 
 namespace pradis::elements {
@@ -211,15 +212,19 @@ struct sphere_plane_contact {
 ///     N = law(delta, delta') >= 0 (contact_law.hpp), zero for delta <= 0
 ///
 /// N pushes the centres apart along e: the flows are those of SD3 with the tension
-/// T = -N (detail::two_point_flows), none on the q4. No friction: the contact force
-/// passes through both centres and makes no moment about them. K and C (IGN=3).
+/// T = -N (detail::two_point_flows), none on the q4. Friction (mu > 0) as CSPHPL's,
+/// in the tangent plane of e, which turns with the line of centres: the state keeps
+/// the material points of both spheres at the last accepted contact point
+/// m = c1 + (R1 - delta/2) e and the elastic slip z; the trial slip is
+/// z_tr = P (z + p_b2 - p_b1), P = I - e e^T, and the tangential force acts at m
+/// (detail::sphere_pair_friction). K and C (IGN=3).
 struct sphere_sphere_contact {
-  static constexpr pradis::passport passport{.name = "CSPHSP", .ext = 12, .ent = 2, .par = 18, .wrk = 2, .adr = 1, .ign = 3};
+  static constexpr pradis::passport passport{.name = "CSPHSP", .ext = 12, .ent = 2, .par = 20, .str = 10, .wrk = 4, .adr = 1, .ign = 3};
   /// Body 1's q1..q3 are local DOFs 4..6 (0-based 3..5) with hidden q4 at 12; body 2's 10..12 (9..11) with q4 at 13.
   static constexpr std::array<rotation_slot, 2> rotation_nodes{{{3, 12}, {9, 13}}};
   static constexpr element_help help{
-      .title = "frictionless contact of two body-fixed spheres in spatial motion",
-      .name = "Sphere-sphere contact: penalty, Hertz or Hunt-Crossley normal force between two spheres [N]",
+      .title = "contact of two body-fixed spheres in spatial motion, Coulomb stick-slip friction",
+      .name = "Sphere-sphere contact: penalty, Hertz or Hunt-Crossley normal force and Coulomb friction [N]",
       .field = "mechanics, spatial motion",
       .dofs = "1 - translation of body 1's reference point along X [m]\n"
               "2 - along Y [m]\n"
@@ -251,10 +256,13 @@ struct sphere_sphere_contact {
                     "k delta^1.5 (1 + 1.5 c delta')\n"
                     "16 - contact stiffness k [N/m or N/m^1.5] (> 0)\n"
                     "17 - damping c [N s/m] (linear) or alpha [s/m] (Hunt-Crossley), unused by Hertz (>= 0)\n"
-                    "18 - effective mass m1 m2 / (m1 + m2) for the step recommendation [kg] (>= 0; 0: no STEPMD)",
-      .work = "1 - penetration delta = R1 + R2 - L [m] (negative: gap)\n2 - normal force N [N]",
-      .special = "code 100 if R1 <= 0, R2 <= 0, the law is not 0, 1 or 2, k <= 0, c < 0, the mass < 0 or a "
-                 "parameter is not finite; code 75 if the penetration reaches the smaller radius (tunnelling; the "
+                    "18 - effective mass m1 m2 / (m1 + m2) for the step recommendation [kg] (>= 0; 0: no STEPMD)\n"
+                    "19 - friction coefficient mu [-] (>= 0; 0: frictionless)\n"
+                    "20 - tangential stick stiffness kt [N/m] (> 0 when mu > 0)",
+      .work = "1 - penetration delta = R1 + R2 - L [m] (negative: gap)\n2 - normal force N [N]\n"
+              "3 - tangential (friction) force |F_t| [N]\n4 - stick flag: 1 sticking, 0 sliding or no contact",
+      .special = "code 100 if R1 <= 0, R2 <= 0, the law is not 0, 1 or 2, k <= 0, c < 0, the mass < 0, mu < 0, "
+                 "kt <= 0 with mu > 0 or a parameter is not finite; code 75 if the penetration reaches the smaller radius (tunnelling; the "
                  "step is cut) or a quaternion norm comes near zero. STEPMD as CSPHPL (docs/contact.md)"};
 
   /// Typed parameters, in PAR order.
@@ -269,17 +277,19 @@ struct sphere_sphere_contact {
     double k = 0;                   ///< contact stiffness
     double c = 0;                   ///< damping (linear) or alpha (Hunt-Crossley)
     double mass = 0;                ///< effective mass for STEPMD [kg] (0: none)
+    double mu = 0;                  ///< friction coefficient
+    double kt = 0;                  ///< tangential stick stiffness [N/m]
   };
   parameters p;
 
   explicit sphere_sphere_contact(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() {
-    return {0.1, -0.2, 0.3, 0.2, 0.1, -0.15, 1.5, 1.2, 0.4, 2.3, -0.1, 0.25, 0.2, 1.5, 2, 4e3, 0.05, 1.0};
+    return {0.1, -0.2, 0.3, 0.2, 0.1, -0.15, 1.5, 1.2, 0.4, 2.3, -0.1, 0.25, 0.2, 1.5, 2, 4e3, 0.05, 1.0, 0.4, 1e4};
   }
   static sphere_sphere_contact from_parameters(std::span<const double> v) {
     return sphere_sphere_contact({v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11], v[12],
-                                  v[13], v[14], v[15], v[16], v[17]});
+                                  v[13], v[14], v[15], v[16], v[17], v[18], v[19]});
   }
   /// NEWINT: parameter checks (code 100).
   void new_integration(element_context& ctx) const {
@@ -287,7 +297,7 @@ struct sphere_sphere_contact {
       if (!std::isfinite(x)) ctx.invalid_parameter("positions and offsets must be finite");
     if (!(p.r1 > 0) || !std::isfinite(p.r1)) ctx.invalid_parameter("radius R1 = " + to_text(p.r1) + " must be finite and > 0");
     if (!(p.r2 > 0) || !std::isfinite(p.r2)) ctx.invalid_parameter("radius R2 = " + to_text(p.r2) + " must be finite and > 0");
-    detail::check_contact_parameters(ctx, p.law, p.k, p.c, 0.0, 0.0, p.mass);
+    detail::check_contact_parameters(ctx, p.law, p.k, p.c, p.mu, p.kt, p.mass);
   }
   void evaluate(const local_input<sphere_sphere_contact>& in, local_output<sphere_sphere_contact>& out,
                 element_context& ctx) const {
@@ -314,9 +324,11 @@ struct sphere_sphere_contact {
     const mat3 fd = e * (nf.dn_dd * e + nf.dn_dr * dld_dd).transpose() + (t / l) * pe;
     const mat3 fdd = nf.dn_dr * e * e.transpose();
     detail::two_point_flows(a, b, vec3(t * e), fd, fdd, out);
+    friction(in, out, ctx, a, b, delta, nf, e, dd);
   }
   /// States the checks may use: quaternions far from zero, the penetration away from 0
-  /// and the radii, the normal force away from its clipping at zero.
+  /// and the radii, the normal force away from its clipping at zero (and, with an
+  /// anchor in the state, the friction away from its stick/slip boundary).
   bool admissible(const local_input<sphere_sphere_contact>& in) const {
     if (!detail::two_quaternions_admissible(in)) return false;
     const auto [a, b] = centres(in);
@@ -328,6 +340,44 @@ struct sphere_sphere_contact {
   }
 
  private:
+  /// Friction (mu > 0, in contact, with an anchor from the last accepted step), and
+  /// the state for the next step: the contact point's material points and the slip.
+  template <class In, class Out>
+  void friction(const In& in, Out& out, element_context& ctx, const detail::attached_point& a,
+                const detail::attached_point& b, double delta, const detail::normal_force& nf, const spatial::vec3& e,
+                const spatial::vec3& dd) const {
+    using namespace spatial;
+    const auto& os = ctx.old_state;
+    const bool anchored = os.size() == 10 && os[0] > 0;
+    const bool on = p.mu > 0 && delta > 0 && anchored;
+    const quaternion q1 = detail::slot_quaternion(in.u, 3, 12), q2 = detail::slot_quaternion(in.u, 9, 13);
+    const quaternion q1d = detail::slot_quaternion(in.v, 3, 12), q2d = detail::slot_quaternion(in.v, 9, 13);
+    const vec3 x10(p.x1, p.y1, p.z1), x20(p.x2, p.y2, p.z2);
+    const vec3 b1 = anchored ? vec3(os[4], os[5], os[6]) : vec3::Zero(), b2 = anchored ? vec3(os[7], os[8], os[9]) : vec3::Zero();
+    const detail::attached_point pb1(x10, b1, in.u.template segment<3>(0), in.v.template segment<3>(0), q1, q1d);
+    const detail::attached_point pb2(x20, b2, in.u.template segment<3>(6), in.v.template segment<3>(6), q2, q2d);
+    const vec3 z_old = on && os[0] > 1.5 ? vec3(os[1], os[2], os[3]) : vec3::Zero();
+    // dN/du and dN/dv over the 14 local columns.
+    const detail::mat3x14 dc = detail::point_columns(1, b.dp_dq) - detail::point_columns(0, a.dp_dq);
+    const detail::mat3x14 dcv = detail::rotation_columns(1, b.dv_dq) - detail::rotation_columns(0, a.dv_dq);
+    const double l = (b.p - a.p).norm();
+    const detail::mat3x14 de = (Eigen::Matrix3d::Identity() - e * e.transpose()) * dc / l;
+    const detail::row14 ddelta = -e.transpose() * dc;
+    const detail::row14 drate_du = -(dd.transpose() * de + e.transpose() * dcv);
+    const detail::row14 dn_du = nf.dn_dd * ddelta + nf.dn_dr * drate_du, dn_dv = nf.dn_dr * ddelta;
+    const detail::sphere_pair_friction fr(a, b, p.r1, delta, nf.n, dn_du, dn_dv, pb1, pb2, z_old, on ? p.mu : 0.0,
+                                          on ? p.kt : 1.0, out);
+    ctx.work[2] = fr.force.norm();
+    ctx.work[3] = (delta > 0 && fr.stick) ? 1.0 : 0.0;
+    if (ctx.new_state.size() == 10) {
+      const vec3 n1 = rotation_matrix(q1).transpose() * (fr.point - (a.p - a.rho));
+      const vec3 n2 = rotation_matrix(q2).transpose() * (fr.point - (b.p - b.rho));
+      const bool c = delta > 0;
+      const double st[10] = {c ? 2.0 : 1.0, c ? fr.z_new(0) : 0.0, c ? fr.z_new(1) : 0.0, c ? fr.z_new(2) : 0.0,
+                             n1(0), n1(1), n1(2), n2(0), n2(1), n2(2)};
+      for (std::size_t i = 0; i < 10; ++i) ctx.new_state[i] = st[i];
+    }
+  }
   template <class In>
   std::pair<detail::attached_point, detail::attached_point> centres(const In& in) const {
     using spatial::vec3;
