@@ -18,45 +18,13 @@
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/io/vtk_series.hpp"
+#include "vtk_reader.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
 using spatial::vec3;
 
-namespace {
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-/// The numbers inside the first <DataArray ... Name="name" ...> element.
-std::vector<double> data_array(const std::string& xml, const std::string& name) {
-  const std::size_t at = xml.find("Name=\"" + name + "\"");
-  REQUIRE(at != std::string::npos);
-  const std::size_t open = xml.find('>', at) + 1, close = xml.find("</DataArray>", open);
-  std::istringstream in(xml.substr(open, close - open));
-  std::vector<double> v;
-  for (double x; in >> x;) v.push_back(x);
-  return v;
-}
-/// The value of attribute `key` in every element <tag .../> of xml.
-std::vector<std::string> attributes(const std::string& xml, const std::string& tag, const std::string& key) {
-  std::vector<std::string> out;
-  for (std::size_t at = xml.find("<" + tag + " "); at != std::string::npos; at = xml.find("<" + tag + " ", at + 1)) {
-    const std::size_t end = xml.find('>', at), k = xml.find(key + "=\"", at);
-    REQUIRE(k < end);
-    const std::size_t v = k + key.size() + 2;
-    out.push_back(xml.substr(v, xml.find('"', v) - v));
-  }
-  return out;
-}
-int attribute_int(const std::string& xml, const std::string& key) {
-  const auto v = attributes(xml, "Piece", key);
-  REQUIRE(v.size() == 1);
-  return std::stoi(v[0]);
-}
-}  // namespace
+using namespace vtk_test;
 
 TEST_SUITE("io/vtk") {
   TEST_CASE("a spinning body's VTK series lists every frame and each frame holds the exact point positions") {

@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -124,17 +125,31 @@ class vtk_series {
   /// Writes one frame of the current state of `sim` (at sim.time()).
   template <class Sim>
   void write(const Sim& sim) {
+    const std::size_t n = scene_.points();
+    std::vector<spatial::point_motion> m;
+    m.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) m.push_back(scene_.motion(sim, i));
+    write(sim.time(), m);
+  }
+  /// Writes one frame at time t from the motions of the scene's points (one per
+  /// point, in order: e.g. recorded earlier with vtk_scene::motion). A count that
+  /// is not the scene's is invalid_model (110).
+  void write(double t, std::span<const spatial::point_motion> m) {
+    if (m.size() != scene_.points())
+      throw error(error_code::invalid_model, "vtk_series: a frame has " + std::to_string(m.size()) +
+                                                 " point motions, but the scene has " +
+                                                 std::to_string(scene_.points()) + " points");
     char index[32];
     std::snprintf(index, sizeof index, "_%06zu.vtu", times_.size());
     const std::string file = name_ + index;
     {
       std::ofstream o(dir_ / file);
       if (!o) throw error(error_code::io_error, "cannot write '" + (dir_ / file).string() + "'");
-      write_frame(o, sim);
+      write_frame(o, m);
       o.close();
       if (!o) throw error(error_code::io_error, "writing '" + (dir_ / file).string() + "' failed");
     }
-    times_.push_back(sim.time());
+    times_.push_back(t);
     files_.push_back(file);
     write_collection();
   }
@@ -146,12 +161,8 @@ class vtk_series {
   const vtk_scene& scene() const noexcept { return scene_; }
 
  private:
-  template <class Sim>
-  void write_frame(std::ostream& o, const Sim& sim) {
-    const std::size_t n = scene_.points();
-    std::vector<spatial::point_motion> m;
-    m.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) m.push_back(scene_.motion(sim, i));
+  void write_frame(std::ostream& o, std::span<const spatial::point_motion> m) {
+    const std::size_t n = m.size();
     if (first_.empty())
       for (const auto& p : m) first_.push_back(p.position);
     o.precision(17);

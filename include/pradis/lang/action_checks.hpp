@@ -225,6 +225,8 @@ class action_checker : public model_builder {
                  "key " + it.text + " of " + c.program + " is not implemented by pradis yet (implemented: START END)");
           else
             fail(it.loc, "unknown key " + it.text + " of " + c.program + did_you_mean(it.text, {"START", "END"}));
+        } else if (it.what == ast::item::kind::name && c.program == "VTK") {
+          fail(it.loc, "VTK draws the model's spatial elements and takes no output labels (only START=, END=)");
         } else if (it.what == ast::item::kind::name) {
           int found = -1;
           std::vector<std::string> labels;
@@ -238,6 +240,7 @@ class action_checker : public model_builder {
           fail(it.loc, "a display program takes output labels and START=, END=");
         }
       }
+    if (c.program == "VTK") return d;
     if (d.columns.empty())
       for (std::size_t k = 0; k < outputs_.size(); ++k) d.columns.push_back(static_cast<int>(k));
     if (d.columns.empty()) fail(c.loc, "nothing to display: the model has no #OUTPUT");

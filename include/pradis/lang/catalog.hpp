@@ -95,6 +95,10 @@ inline const std::vector<program_info>& display_programs() {
        "START - first time shown (start of the run)\nEND - last time shown (end of the run)\n"},
       {"DISP", "graphs of outputs over time, one panel each, written as PNG (needs gnuplot)", "Graphs 'DISP ()",
        "START - first time shown (start of the run)\nEND - last time shown (end of the run)\n"},
+      {"VTK", "animation of the model's spatial elements (beams, springs, joints, contacts, plates) as a VTK time "
+              "series for ParaView: <dir>/vtk/<stem>.<label>.pvd and one .vtu per output time",
+       "Animation 'VTK (START=0, END=1)",
+       "START - first time written (start of the run)\nEND - last time written (end of the run)\n"},
   };
   return v;
 }

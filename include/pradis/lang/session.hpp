@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -21,6 +22,7 @@
 
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/io/csv_file.hpp"
+#include "pradis/io/model_scene.hpp"
 #include "pradis/io/progress.hpp"
 #include "pradis/io/table.hpp"
 #include "pradis/lang/action_checks.hpp"
@@ -43,6 +45,13 @@ class session : public action_checker {
     std::vector<std::string> names;
     for (const auto& o : outputs_) names.push_back(o.label);
     results_ = io::table(names);
+    for (const auto& a : prog_.actions)
+      if (a.what == ast::action::kind::print && a.stage.program == "VTK") {
+        if (!scene_) scene_ = io::model_scene(*model_);
+        if (scene_->points() == 0)
+          fail(a.stage.loc, "VTK has nothing to draw: no element of the model has a geometry (BEAM3, BEAMI3, SD3, "
+                            "the spatial joints, CSPHPL, CSPHSP and TRIPL draw themselves)");
+      }
   }
   session(const session&) = delete;
   session& operator=(const session&) = delete;
@@ -179,6 +188,12 @@ class session : public action_checker {
                           "larger (or SMAX, with OUT = 0: a row every step)");
     results_.add_row(s.time(), row);
     if (csv_) csv_->add_row(s.time(), row);
+    if (scene_) {  // the positions of the animation's points, for the VTK displays
+      std::vector<spatial::point_motion> m;
+      m.reserve(scene_->points());
+      for (std::size_t i = 0; i < scene_->points(); ++i) m.push_back(scene_->motion(s, i));
+      frames_.push_back(std::move(m));
+    }
   }
 
   /// Stops the run if run_settings::stop was set (by a signal).
@@ -340,6 +355,7 @@ class session : public action_checker {
 
   void display(const ast::call& c) {
     const auto d = display_options(c);
+    if (c.program == "VTK") return animation(c, d);
     std::vector<std::string> names;
     for (int k : d.columns) names.push_back(outputs_[static_cast<std::size_t>(k)].label);
     io::table t(names);
@@ -358,6 +374,20 @@ class session : public action_checker {
     note(c.program + ": " + base + ".csv");
     if (c.program == "DISP" && settings_.plot)
       plots_.push_back({names, base + ".csv", base + ".png", c.label.empty() ? settings_.stem : c.label});
+  }
+
+  /// A 'VTK display: `<dir>/vtk/<stem>.<label>.pvd` and one `.vtu` per output
+  /// row between START and END (the frames recorded with the rows).
+  void animation(const ast::call& c, const display_spec& d) {
+    ++displays_;
+    if (!settings_.write_files) return;
+    io::vtk_series vtk(std::filesystem::path(path_in_output("vtk")), display_file(c, displays_), *scene_);
+    for (std::size_t r = 0; r < results_.rows(); ++r) {
+      const double time = results_.at(r, 0);
+      if (time >= d.start && time <= d.end) vtk.write(time, frames_[r]);
+    }
+    files_.push_back(vtk.collection().string());
+    note(c.program + ": " + vtk.collection().string() + " (" + std::to_string(vtk.frames()) + " frames)");
   }
 
   /// `<stem>.<label>` of the k-th display (1-based), without extension.
@@ -462,6 +492,8 @@ class session : public action_checker {
   std::vector<stage_report> reports_;
   std::unique_ptr<io::csv_file> csv_;  ///< `<stem>.csv` while the run writes it
   std::vector<plot_request> plots_;
+  std::optional<io::vtk_scene> scene_;                    ///< the animation's geometry, if a 'VTK display asks for it
+  std::vector<std::vector<spatial::point_motion>> frames_;  ///< its point motions, one entry per results_ row
 };
 
 }  // namespace pradis::lang

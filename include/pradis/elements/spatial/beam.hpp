@@ -95,6 +95,12 @@ struct elastic_beam {
 
   /// NEWINT: positive moduli and section properties, distinct ends, a usable section
   /// vector (code 100); W(1) = L0.
+  /// Animation geometry (io/model_scene.hpp): a line between the two end points.
+  template <class Drawer>
+  void draw(Drawer& d) const {
+    d.line(d.body_point({p.xa, p.ya, p.za}, 0, 0, spatial::vec3::Zero()),
+           d.body_point({p.xb, p.yb, p.zb}, 6, 1, spatial::vec3::Zero()));
+  }
   void new_integration(element_context& ctx) const {
     for (double x : {p.e, p.g, p.a, p.iy, p.iz, p.j, p.xa, p.ya, p.za, p.xb, p.yb, p.zb, p.vx, p.vy, p.vz})
       if (!std::isfinite(x)) ctx.invalid_parameter("the parameters must be finite");

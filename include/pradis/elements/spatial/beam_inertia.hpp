@@ -81,6 +81,12 @@ struct beam_inertia {
   }
 
   /// NEWINT: positive density and section, distinct ends, a usable section vector (code 100).
+  /// Animation geometry (io/model_scene.hpp): a line between the two end points.
+  template <class Drawer>
+  void draw(Drawer& d) const {
+    d.line(d.body_point({p.xa, p.ya, p.za}, 0, 0, spatial::vec3::Zero()),
+           d.body_point({p.xb, p.yb, p.zb}, 6, 1, spatial::vec3::Zero()));
+  }
   void new_integration(element_context& ctx) const {
     for (double x : {p.rho, p.a, p.iy, p.iz, p.ip, p.xa, p.ya, p.za, p.xb, p.yb, p.zb, p.vx, p.vy, p.vz})
       if (!std::isfinite(x)) ctx.invalid_parameter("the parameters must be finite");

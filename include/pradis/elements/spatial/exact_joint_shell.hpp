@@ -140,6 +140,11 @@ struct exact_joint : Kind {
   /// From the flat PAR list.
   static exact_joint from_parameters(std::span<const double> v) { return exact_joint(Kind::parameters::read(v)); }
   /// NEWINT: parameter checks (code 100).
+  /// Animation geometry (io/model_scene.hpp): the arms of the two bodies.
+  template <class Drawer>
+  void draw(Drawer& d) const {
+    this->p.geo.draw(d);
+  }
   void new_integration(element_context& ctx) const {
     if (!this->p.geo.finite()) ctx.invalid_parameter("positions and offsets must be finite (a parameter is not finite)");
     Kind::check(ctx);

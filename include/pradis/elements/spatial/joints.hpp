@@ -57,6 +57,14 @@ struct joint_geometry {
       if (!std::isfinite(x)) return false;
     return true;
   }
+  /// Animation geometry (io/model_scene.hpp): each body's arm, a line from its
+  /// reference point to its joint point (a chain of bodies shows as a polyline).
+  template <class Drawer>
+  void draw(Drawer& d) const {
+    const spatial::vec3 xa{xa0, ya0, za0}, xb{xb0, yb0, zb0};
+    d.line(d.body_point(xa, 0, 0, spatial::vec3::Zero()), d.body_point(xa, 0, 0, {rax, ray, raz}));
+    d.line(d.body_point(xb, 6, 1, spatial::vec3::Zero()), d.body_point(xb, 6, 1, {rbx, rby, rbz}));
+  }
   /// The two attached points of a two-body element.
   template <class In>
   std::pair<attached_point, attached_point> points(const In& in) const {
@@ -154,6 +162,11 @@ struct spherical_joint {
     return spherical_joint({{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11]}, v[12], v[13]});
   }
   /// NEWINT: parameter checks (code 100).
+  /// Animation geometry (io/model_scene.hpp): the arms of the two bodies.
+  template <class Drawer>
+  void draw(Drawer& d) const {
+    p.geo.draw(d);
+  }
   void new_integration(element_context& ctx) const {
     if (!p.geo.finite()) ctx.invalid_parameter("positions and offsets must be finite");
     if (!(p.k > 0) || !std::isfinite(p.k)) ctx.invalid_parameter("stiffness k = " + to_text(p.k) + " must be finite and > 0 (k <= 0)");
@@ -252,6 +265,11 @@ struct revolute_joint {
                            v[12], v[13], v[14], v[15], v[16], v[17], v[18], v[19], v[20], v[21]});
   }
   /// NEWINT: parameter checks (code 100).
+  /// Animation geometry (io/model_scene.hpp): the arms of the two bodies.
+  template <class Drawer>
+  void draw(Drawer& d) const {
+    p.geo.draw(d);
+  }
   void new_integration(element_context& ctx) const {
     if (!p.geo.finite()) ctx.invalid_parameter("positions and offsets must be finite");
     detail::check_hinge_axis(ctx, "e_a", p.eax, p.eay, p.eaz);

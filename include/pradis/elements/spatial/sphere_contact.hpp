@@ -108,6 +108,15 @@ struct sphere_plane_contact {
                                  v[13], v[14], v[15], v[16], v[17], v[18]});
   }
   /// NEWINT: parameter checks (code 100).
+  /// Animation geometry (io/model_scene.hpp): a vertex at the sphere's centre
+  /// and the body's arm to it.
+  template <class Drawer>
+  void draw(Drawer& d) const {
+    const spatial::vec3 x0{p.x0, p.y0, p.z0};
+    const int c = d.body_point(x0, 0, 0, {p.ax, p.ay, p.az});
+    d.vertex(c);
+    d.line(d.body_point(x0, 0, 0, spatial::vec3::Zero()), c);
+  }
   void new_integration(element_context& ctx) const {
     for (double x : {p.x0, p.y0, p.z0, p.ax, p.ay, p.az, p.px, p.py, p.pz, p.nx, p.ny, p.nz})
       if (!std::isfinite(x)) ctx.invalid_parameter("positions, offsets and the plane normal must be finite");
@@ -292,6 +301,17 @@ struct sphere_sphere_contact {
                                   v[13], v[14], v[15], v[16], v[17], v[18], v[19]});
   }
   /// NEWINT: parameter checks (code 100).
+  /// Animation geometry (io/model_scene.hpp): vertices at the two centres and
+  /// the bodies' arms to them.
+  template <class Drawer>
+  void draw(Drawer& d) const {
+    const spatial::vec3 x1{p.x1, p.y1, p.z1}, x2{p.x2, p.y2, p.z2};
+    const int c1 = d.body_point(x1, 0, 0, {p.a1x, p.a1y, p.a1z}), c2 = d.body_point(x2, 6, 1, {p.a2x, p.a2y, p.a2z});
+    d.vertex(c1);
+    d.vertex(c2);
+    d.line(d.body_point(x1, 0, 0, spatial::vec3::Zero()), c1);
+    d.line(d.body_point(x2, 6, 1, spatial::vec3::Zero()), c2);
+  }
   void new_integration(element_context& ctx) const {
     for (double x : {p.x1, p.y1, p.z1, p.a1x, p.a1y, p.a1z, p.x2, p.y2, p.z2, p.a2x, p.a2y, p.a2z})
       if (!std::isfinite(x)) ctx.invalid_parameter("positions and offsets must be finite");

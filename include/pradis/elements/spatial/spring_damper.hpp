@@ -91,6 +91,17 @@ struct spatial_spring_damper {
                                   v[13], v[14]});
   }
   /// NEWINT: parameter checks (code 100).
+  /// Animation geometry (io/model_scene.hpp): the spring as a line between its
+  /// attachment points, and each body's arm from its reference point to them.
+  template <class Drawer>
+  void draw(Drawer& d) const {
+    const spatial::vec3 xa{p.xa0, p.ya0, p.za0}, xb{p.xb0, p.yb0, p.zb0};
+    const int a = d.body_point(xa, 0, 0, {p.rax, p.ray, p.raz});
+    const int b = d.body_point(xb, 6, 1, {p.rbx, p.rby, p.rbz});
+    d.line(d.body_point(xa, 0, 0, spatial::vec3::Zero()), a);
+    d.line(a, b);
+    d.line(b, d.body_point(xb, 6, 1, spatial::vec3::Zero()));
+  }
   void new_integration(element_context& ctx) const {
     for (double x : {p.xa0, p.ya0, p.za0, p.rax, p.ray, p.raz, p.xb0, p.yb0, p.zb0, p.rbx, p.rby, p.rbz})
       if (!std::isfinite(x)) ctx.invalid_parameter("positions and offsets must be finite");

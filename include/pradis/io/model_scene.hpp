@@ -1,0 +1,135 @@
+#pragma once
+/// \file
+/// The animation geometry of a whole model, drawn by its elements: every
+/// element type with a `draw` hook (beams, spring-dampers, joints, sphere
+/// contacts, plates) adds its points and cells to one vtk_scene, so a model
+/// built in code or from a model file can be written as a VTK time series
+/// without describing its geometry a second time.
+///
+///     pradis::io::vtk_scene scene = pradis::io::model_scene(m);
+///     pradis::io::vtk_series vtk("out/vtk", "model", scene);
+///     sim.on_output([&](const auto& s) { vtk.write(s); });
+///
+/// **The hook.** An element type may declare
+///
+///     template <class Drawer> void draw(Drawer& d) const;
+///
+/// and call, with its own local DOF numbers (see element_drawer):
+/// `d.point(x0, k)`, `d.body_point(x0, k, node, offset)`, then `d.vertex(a)`,
+/// `d.line(a, b)`, `d.triangle(a, b, c)` with the indices they returned. The
+/// hook is a template, so an element header does not depend on io/.
+///
+/// Points are shared: two elements that draw the same point (the same DOFs,
+/// rotational node, start position and offset, e.g. the common end of two
+/// beams) get one scene point; a cell drawn twice (a beam and its inertia
+/// element) is kept once.
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+#include <tuple>
+#include <vector>
+
+#include "pradis/io/vtk_series.hpp"
+#include "pradis/model/model.hpp"
+
+namespace pradis::io {
+
+/// Builds one scene from the draw hooks of many elements, merging equal points
+/// and equal cells. model_scene() uses it; user code rarely needs it.
+class scene_builder {
+ public:
+  /// The scene point for (x0, translational DOFs, node, offset), made on first use.
+  int point(const spatial::vec3& x0, const std::array<dof, 3>& x, const rotation_node* n,
+            const spatial::vec3& offset) {
+    const key k{x0.x(), x0.y(), x0.z(), x[0].index, x[1].index, x[2].index,
+                n ? n->q4.index : -1, offset.x(), offset.y(), offset.z()};
+    if (auto it = points_.find(k); it != points_.end()) return it->second;
+    const int id = n ? scene_.body_point(x0, x, *n, offset) : scene_.point(x0, x);
+    points_.emplace(k, id);
+    return id;
+  }
+  /// A cell of the given VTK type, kept once whatever the order of its points;
+  /// a cell whose points coincide (an arm of zero length) is left out.
+  void cell(vtk_scene::cell_type type, std::vector<int> ids) {
+    std::vector<int> sorted = ids;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return;
+    if (!cells_.emplace(static_cast<int>(type), sorted).second) return;
+    switch (type) {
+      case vtk_scene::vertex_cell: scene_.vertex(ids[0]); break;
+      case vtk_scene::line_cell: scene_.line(ids[0], ids[1]); break;
+      case vtk_scene::triangle_cell: scene_.triangle(ids[0], ids[1], ids[2]); break;
+    }
+  }
+  /// The scene built so far.
+  vtk_scene& scene() noexcept { return scene_; }
+
+ private:
+  using key = std::tuple<double, double, double, int, int, int, int, double, double, double>;
+  vtk_scene scene_;
+  std::map<key, int> points_;
+  std::set<std::pair<int, std::vector<int>>> cells_;
+};
+
+/// What an element's `draw` hook receives: the element's local DOF numbers are
+/// turned into the model's DOFs of one instance.
+template <class E>
+class element_drawer {
+ public:
+  /// The drawer of instance `in` adding to `b`.
+  element_drawer(scene_builder& b, const element_instance<E>& in) : b_(b), in_(in) {}
+
+  /// A point that starts at x0 and moves by the translational DOFs at local
+  /// indices k, k+1, k+2 (X, Y, Z). Returns its scene index.
+  int point(const spatial::vec3& x0, int k) { return b_.point(x0, translations(k), nullptr, spatial::vec3::Zero()); }
+  /// A point fixed in a body: the reference point starts at x0 and moves by the
+  /// translational DOFs at local k, k+1, k+2, and the body turns with the
+  /// element's rotational node `node` (an index into E::rotation_nodes); the point
+  /// sits at `offset` in the body frame: p = x0 + x + R(q) offset.
+  int body_point(const spatial::vec3& x0, int k, int node, const spatial::vec3& offset) {
+    static_assert(HasRotationNodes<E>, "body_point needs an element with rotational nodes");
+    const rotation_slot s = E::rotation_nodes.at(static_cast<std::size_t>(node));
+    const rotation_node n{global(s.q1), global(s.q1 + 1), global(s.q1 + 2), global(s.q4), -1};
+    return b_.point(x0, translations(k), &n, offset);
+  }
+  /// A vertex cell (a sphere's centre, a mass).
+  void vertex(int a) { b_.cell(vtk_scene::vertex_cell, {a}); }
+  /// A line cell (a beam, a spring, a body's arm to a joint).
+  void line(int a, int b) { b_.cell(vtk_scene::line_cell, {a, b}); }
+  /// A triangle cell (a plate).
+  void triangle(int a, int b, int c) { b_.cell(vtk_scene::triangle_cell, {a, b, c}); }
+
+ private:
+  dof global(int k) const { return dof{in_.dofs.at(static_cast<std::size_t>(k))}; }
+  std::array<dof, 3> translations(int k) const { return {global(k), global(k + 1), global(k + 2)}; }
+  scene_builder& b_;
+  const element_instance<E>& in_;
+};
+
+/// Whether element type E draws itself (has `template <class D> void draw(D&) const`).
+template <class E>
+concept drawable = requires(const E& e, element_drawer<E>& d) { e.draw(d); };
+
+/// The animation geometry of model m: the points and cells drawn by every
+/// instance of every drawable element type, in the order the model lists them.
+/// Elements without a hook (masses on scalar DOFs, sources, rigid bodies, which
+/// carry no position of their own) draw nothing; a rigid body shows through the
+/// joints, springs and contacts attached to it.
+template <class Model>
+vtk_scene model_scene(const Model& m) {
+  scene_builder b;
+  m.for_each_instances([&](const auto& v) {
+    using I = typename std::decay_t<decltype(v)>::value_type;
+    using E = decltype(I::element);
+    if constexpr (drawable<E>)
+      for (const auto& in : v) {
+        element_drawer<E> d(b, in);
+        in.element.draw(d);
+      }
+  });
+  return std::move(b.scene());
+}
+
+}  // namespace pradis::io

@@ -1,0 +1,110 @@
+// model_scene: a model's spatial elements draw themselves (io/model_scene.hpp).
+// A double pendulum of two rigid bodies on exact spherical joints (SPH3X), with
+// a spring between them (SD3) and a sphere contact on the second body (CSPHPL,
+// its plane far below), falls from the horizontal. The scene has exactly the
+// points and cells the elements draw, with shared points merged; while the
+// bodies swing, the joint points that SPH3X holds together coincide in the
+// drawing (to the constraint's round-off), the drawn arms keep their lengths
+// (rigid bodies), and vtk_series::write(t, motions) refuses a wrong count.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "pradis/elements/library.hpp"
+#include "pradis/integrators/simulation.hpp"
+#include "pradis/io/model_scene.hpp"
+
+using namespace pradis;
+using namespace pradis::elements;
+using spatial::vec3;
+
+TEST_SUITE("io/vtk") {
+  TEST_CASE("model_scene: a double pendulum draws its joints, spring and sphere once, and the joints stay closed") {
+    using scene_model = model<rigid_body, exact_spherical_joint, spatial_spring_damper, sphere_plane_contact,
+                              spatial_force>;
+    scene_model m;
+    const dof G = m.ground();
+    const auto x1 = m.add_dofs(3, "x1");
+    const auto x2 = m.add_dofs(3, "x2");
+    const rotation_node r1 = m.add_rotation_node("r1"), r2 = m.add_rotation_node("r2");
+    const double mass = 1.0, j = 0.1, g = 9.81;
+    m.add<rigid_body>("body 1", {mass, j, j, j, 0, 0, 0, 0, 0, 0}, x1[0], x1[1], x1[2], r1);
+    m.add<rigid_body>("body 2", {mass, j, j, j, 0, 0, 0, 0, 0, 0}, x2[0], x2[1], x2[2], r2);
+    // Pivot at the origin; body 1's centre at (0.5, 0, 0), body 2's at (1.5, 0, 0).
+    m.add<exact_spherical_joint>("pivot", {{0, 0, 0, 0, 0, 0, 0.5, 0, 0, -0.5, 0, 0}}, G, G, G, G, G, G, x1[0], x1[1],
+                                 x1[2], r1);
+    m.add<exact_spherical_joint>("elbow", {{0.5, 0, 0, 0.5, 0, 0, 1.5, 0, 0, -0.5, 0, 0}}, x1[0], x1[1], x1[2], r1,
+                                 x2[0], x2[1], x2[2], r2);
+    m.add<spatial_spring_damper>("spring", {0.5, 0, 0, 0, 0.1, 0, 1.5, 0, 0, 0, 0.1, 0, 10, 1, 0}, x1[0], x1[1],
+                                 x1[2], r1, x2[0], x2[1], x2[2], r2);
+    m.add<sphere_plane_contact>("ball", {1.5, 0, 0, 0.5, 0, 0, 0.1, 0, 0, -10, 0, 0, 1, 0, 1e5, 0, 0, 0, 0}, x2[0],
+                                x2[1], x2[2], r2);
+    m.add<spatial_force>("weight 1", {0, 0, -mass * g, 0, 0, 0, 0, 0}, x1[0], x1[1], x1[2]);
+    m.add<spatial_force>("weight 2", {0, 0, -mass * g, 0, 0, 0, 0, 0}, x2[0], x2[1], x2[2]);
+
+    const io::vtk_scene scene = io::model_scene(m);
+    // Points: the pivot, body 1's centre and its two joint points and spring
+    // point, body 2's centre, its joint point, spring point and sphere centre: 9.
+    // Cells: 6 arms (the pivot's own arm has zero length and is left out), the
+    // spring, and the sphere's centre as a vertex: 8.
+    CHECK(scene.points() == 9);
+    CHECK(scene.cells() == 8);
+    int vertices = 0, lines = 0;
+    for (int t : scene.types()) (t == io::vtk_scene::vertex_cell ? vertices : lines) += 1;
+    CHECK(vertices == 1);
+    CHECK(lines == 7);
+
+    simulation<scene_model, alpha_family> sim(m, alpha_family(hht{-0.05}));
+    std::vector<vec3> start;
+    double joint_gap = 0, arm_error = 0, travel = 0;
+    const auto index_of = [&](const vec3& p) {
+      for (std::size_t i = 0; i < start.size(); ++i)
+        if ((start[i] - p).norm() < 1e-12) return i;
+      FAIL("no point at " << p.transpose());
+      return std::size_t{0};
+    };
+    const auto at = [&](std::size_t i) { return scene.motion(sim, i).position; };
+    sim.on_output([&](const auto& s) {
+      if (start.empty()) {
+        for (std::size_t i = 0; i < scene.points(); ++i) start.push_back(scene.motion(s, i).position);
+        return;
+      }
+      // Two points start at each joint (one per body), and one at the pivot.
+      std::vector<std::size_t> pivot, elbow;
+      for (std::size_t i = 0; i < start.size(); ++i) {
+        if (start[i].norm() < 1e-12) pivot.push_back(i);
+        if ((start[i] - vec3(1, 0, 0)).norm() < 1e-12) elbow.push_back(i);
+      }
+      REQUIRE(pivot.size() == 2);
+      REQUIRE(elbow.size() == 2);
+      joint_gap = std::max({joint_gap, (at(pivot[0]) - at(pivot[1])).norm(), (at(elbow[0]) - at(elbow[1])).norm()});
+      const vec3 c1 = at(index_of({0.5, 0, 0})), c2 = at(index_of({1.5, 0, 0}));
+      const vec3 ball = at(index_of({2, 0, 0})), s2 = at(index_of({1.5, 0.1, 0}));
+      arm_error = std::max({arm_error, std::abs((ball - c2).norm() - 0.5), std::abs((s2 - c2).norm() - 0.1),
+                            std::abs((c1 - at(index_of({0.5, 0.1, 0}))).norm() - 0.1)});
+      travel = std::max(travel, (c2 - vec3(1.5, 0, 0)).norm());
+    });
+    run_options o;
+    o.end = 0.4;
+    o.out = 0.01;
+    o.smax = 1e-3;
+    (void)sim.run(o);
+    CHECK(travel > 0.5);  // the pendulum has swung well down
+    CHECK(joint_gap < 1e-9);
+    CHECK(arm_error < 1e-12);
+
+    // A frame with a wrong number of point motions.
+    io::vtk_series vtk(std::filesystem::temp_directory_path() / "pradis_scene_test", "s", scene);
+    std::vector<spatial::point_motion> few(3);
+    try {
+      vtk.write(0.0, few);
+      FAIL("no error");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::invalid_model);
+      CHECK(std::string(e.message()).find("3 point motions") != std::string::npos);
+    }
+    std::filesystem::remove_all(std::filesystem::temp_directory_path() / "pradis_scene_test");
+  }
+}
