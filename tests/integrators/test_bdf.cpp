@@ -18,6 +18,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <sstream>
 #include <numbers>
 #include <span>
 #include <vector>
@@ -26,6 +27,7 @@
 #include "pradis/core/element.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/bdf/bdf_simulation.hpp"
+#include "pradis/integrators/simulation.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
@@ -210,6 +212,75 @@ TEST_SUITE("integrators/bdf") {
     for (std::size_t i = 0; i < times.size(); ++i) CHECK(times[i] == doctest::Approx(0.1 * static_cast<double>(i)).epsilon(1e-12));
     CHECK(worst < 50 * 1e-7);
     CHECK(sim.statistic("ORDER") >= 1);
+  }
+
+  TEST_CASE("checkpoints: a BDF stage restarted from one is the uninterrupted run; the one-step driver reads them too") {
+    // Both drivers write the same format (checkpoint.hpp). BDF starts every stage
+    // at order 1 from the state, so a stage continued from a checkpoint is the
+    // uninterrupted second stage bit for bit; Newmark continues from the BDF state
+    // (p = a) and BDF from Newmark's, each within its own error of the exact cosine.
+    using osc = model<point_mass, linear_spring, initial_displacement>;
+    const auto make = [](auto& m) {
+      const dof x = m.add_dof("x");
+      m.template add<point_mass>("m", {1.0}, x);
+      m.template add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
+      m.template add<initial_displacement>("x0", {1.0}, x);
+      return x;
+    };
+    osc m1, m2, m3, m4;
+    const dof x = make(m1), x2 = make(m2), x3 = make(m3), x4 = make(m4);
+    run_options o = controlled(0.5, 1e-8, 0.1);
+    bdf_simulation whole(m1);
+    whole.run(o);
+    std::stringstream cp;
+    whole.save_checkpoint(cp);
+    const std::string bytes = cp.str();
+    o.end = 1.0;
+    whole.run(o);
+    bdf_simulation again(m2);
+    std::istringstream in(bytes);
+    again.load_checkpoint(in);
+    CHECK(again.time() == 0.5);
+    again.run(o);
+    CHECK(again.u(x2) == whole.u(x));
+    CHECK(again.v(x2) == whole.v(x));
+    CHECK(again.statistics().steps == whole.statistics().steps);
+
+    // Newmark from the BDF checkpoint, at h = 1e-4: error (w h)^2 / 24 w t ~ 1e-8.
+    simulation<osc, newmark> nm(m3, newmark{});
+    std::istringstream in2(bytes);
+    nm.load_checkpoint(in2);
+    (void)nm.run({.end = 1.0, .smax = 1e-4});
+    CHECK(std::abs(nm.u(x3) - std::cos(osc_w * 1.0)) < 1e-6);
+    // BDF from Newmark's checkpoint.
+    std::stringstream cp2;
+    nm.save_checkpoint(cp2);
+    bdf_simulation back(m4);
+    back.load_checkpoint(cp2);
+    o.end = 1.5;
+    back.run(o);
+    CHECK(std::abs(back.u(x4) - std::cos(osc_w * 1.5)) < 2e-6);
+
+    // Another model's checkpoint, and a damaged one, are refused; the driver is unchanged.
+    model<point_mass, linear_spring, initial_displacement, linear_damper> other;
+    other.add<linear_damper>("c", {0.1}, make(other), other.ground());
+    bdf_simulation foreign(other);
+    std::istringstream in3(bytes);
+    try {
+      foreign.load_checkpoint(in3);
+      FAIL("no error");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::io_error);
+      CHECK(e.message().find("different model") != std::string::npos);
+    }
+    std::string broken = bytes;
+    broken[broken.size() / 2] ^= 0x5a;
+    std::istringstream in4(broken);
+    bdf_simulation fresh(m2);
+    CHECK_THROWS_AS(fresh.load_checkpoint(in4), error);
+    bdf_simulation unstarted(m2);
+    std::stringstream none;
+    CHECK_THROWS_AS(unstarted.save_checkpoint(none), error);
   }
 
   TEST_CASE("a very stiff spring: large steps stay stable and damp the stiff mode") {

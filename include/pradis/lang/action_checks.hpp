@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "pradis/integrators/bdf/options.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/linalg/ordering.hpp"
 #include "pradis/lang/model_builder.hpp"
@@ -72,6 +73,8 @@ class action_checker : public model_builder {
     location save_loc;        ///< where SAVE is
     location out_loc;         ///< where OUT is
     int optim = -1;           ///< OPTIM: ordering level 0..4, or -1 to choose by size
+    bool bdf = false;         ///< the BDF program (bdf_opt), not a one-step scheme
+    bdf_options bdf_opt;      ///< BDF: MAXORD
   };
 
   /// The program that owns a scheme key (BETA, GAMMA, ALPHA, RHOINF), or "" for a common key.
@@ -79,6 +82,7 @@ class action_checker : public model_builder {
     if (k == "BETA" || k == "GAMMA") return "NEWMARK";
     if (k == "ALPHA") return "HHT";
     if (k == "RHOINF") return "GALPHA";
+    if (k == "MAXORD") return "BDF";
     return "";
   }
 
@@ -98,7 +102,7 @@ class action_checker : public model_builder {
     static const std::vector<std::string> known{"END",   "OUT",   "SMAX",  "SMIN",    "IGNORE",  "DABSU",
                                                 "DRLTU", "DABSI", "DRLTI", "ITR",     "SECOND",  "BETA",
                                                 "GAMMA", "ALPHA", "RHOINF", "DABSX",  "DRLTX",   "CONTROL",
-                                                "PREDICT", "SAVE",  "OPTIM"};
+                                                "PREDICT", "SAVE",  "OPTIM",   "MAXORD"};
     for (const auto& g : c.args)
       for (const auto& it : g) {
         if (it.what != ast::item::kind::keyed)
@@ -117,6 +121,11 @@ class action_checker : public model_builder {
                            "DRLTI ITR SECOND DABSX DRLTX CONTROL PREDICT SAVE OPTIM" +
                            own + ")");
         }
+        if (c.program == "BDF")
+          for (const char* no : {"DABSU", "DRLTU", "DABSI", "DRLTI", "SECOND", "CONTROL", "PREDICT"})
+            if (k == no)
+              fail(it.loc, "key " + k + " does not apply to BDF (its Newton and error tests are weighted by DRLTX and "
+                           "DABSX; keys of BDF: END OUT SMAX SMIN IGNORE DRLTX DABSX ITR SAVE OPTIM MAXORD)");
         const std::string owner = owner_of_key(k);
         if (!owner.empty() && owner != c.program)
           fail(it.loc, "key " + k + " belongs to " + owner + ", not to " + c.program +
@@ -164,6 +173,8 @@ class action_checker : public model_builder {
           if (!(s.save > 0) || !std::isfinite(s.save))
             fail(it.loc, "SAVE = " + num(s.save) +
                              " must be a number > 0 (the interval of simulated time between checkpoints)");
+        } else if (k == "MAXORD") {
+          s.bdf_opt.max_order = whole(v, "MAXORD", 1, 5);
         } else if (k == "OPTIM")
           s.optim = whole(v, "OPTIM", linalg::optim_min_level, linalg::optim_max_level);
         else if (k == "BETA")
@@ -188,6 +199,11 @@ class action_checker : public model_builder {
           fail(it.loc, "unknown key " + k + " of " + c.program + did_you_mean(k, known));
       }
     if (!has_end) fail(c.args_loc, c.program + " needs END=<end time>");
+    if (c.program == "BDF") {
+      s.bdf = true;
+      s.opt.error_control = true;  // BDF always controls its local error (DRLTX, DABSX)
+      return s;
+    }
     try {
       if (c.program == "SHTERM")
         s.scheme = stoermer{}.coefficients_set();

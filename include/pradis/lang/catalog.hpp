@@ -34,6 +34,11 @@ inline const std::vector<program_info>& integration_programs() {
       {"GALPHA", "generalized-alpha scheme: second order, high-frequency damping set by RHOINF",
        "Calculation 'GALPHA (END=1, RHOINF=0.8)",
        "RHOINF - spectral radius at infinite frequency, 0 <= RHOINF <= 1; 1 is undamped (0.8)\n"},
+      {"BDF", "variable-order (1..5), variable-step BDF with local error control (as DASSL and IDA): the fastest "
+              "choice for smooth motions at tight tolerances; damps undamped oscillations slightly",
+       "Calculation 'BDF (END=1, DRLTX=1e-6, MAXORD=5)",
+       "MAXORD - highest order, 1..5 (5)\nBDF always controls its error with DRLTX and DABSX; DABSU, DRLTU, DABSI, "
+       "DRLTI, SECOND, CONTROL and PREDICT do not apply\n"},
   };
   return v;
 }

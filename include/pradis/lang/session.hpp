@@ -26,6 +26,7 @@
 #include "pradis/io/progress.hpp"
 #include "pradis/io/table.hpp"
 #include "pradis/lang/action_checks.hpp"
+#include "pradis/lang/drivers.hpp"
 #include "pradis/lang/run_types.hpp"
 #include "pradis/linalg/sparse_lu.hpp"
 #include "pradis/spatial/node_state.hpp"
@@ -33,15 +34,15 @@
 namespace pradis::lang {
 
 /// A model file turned into a model and a list of actions.
-class session : public action_checker {
+class session : public action_checker, public stage_drivers<session> {
+  friend class stage_drivers<session>;
+
  public:
-  /// The simulation of a model file: OPTIM picks the ordering level of its solver per stage.
-  using sim_type = simulation<library_model, stage_scheme, linalg::sparse_lu<linalg::optim_ordering>>;
   /// Largest number of checkpoints the SAVE key of one stage may write.
   static constexpr double max_checkpoints = 10000;
 
   /// Builds the model and checks outputs and actions. Throws lang_error.
-  explicit session(ast::program prog) : action_checker(std::move(prog)) {
+  explicit session(ast::program prog) : action_checker(std::move(prog)), stage_drivers<session>(*model_) {
     std::vector<std::string> names;
     for (const auto& o : outputs_) names.push_back(o.label);
     results_ = io::table(names);
@@ -98,8 +99,6 @@ class session : public action_checker {
   const std::vector<stage_report>& stages() const noexcept { return reports_; }
   /// The plots the 'DISP calls of the run asked for (their CSV files are written).
   const std::vector<plot_request>& plots() const noexcept { return plots_; }
-  /// The simulation (null before the first stage or $RESTORE).
-  const sim_type* simulation_ptr() const noexcept { return sim_.get(); }
 
  private:
   void note(const std::string& s) const {
@@ -153,12 +152,18 @@ class session : public action_checker {
     f->commit();
     note(std::string(early ? "results so far: " : "results: ") + f->path() + " (" + std::to_string(f->rows()) +
          " rows, " + std::to_string(outputs_.size()) + " outputs" +
-         (early && sim_ ? ", up to t = " + num(sim_->time()) : std::string()) + ")");
+         (early && has_driver() ? ", up to t = " + num(time_now()) : std::string()) + ")");
     files_.push_back(f->path());
   }
 
   // ---- actions: execution -------------------------------------------------------------------
-  void record(const sim_type& s) {
+  /// The current driver's time.
+  double time_now() const {
+    return visit([](const auto& s) { return s.time(); });
+  }
+
+  template <class Sim>
+  void record(const Sim& s) {
     std::vector<double> row;
     row.reserve(outputs_.size());
     for (const auto& o : outputs_) {
@@ -197,54 +202,31 @@ class session : public action_checker {
   }
 
   /// Stops the run if run_settings::stop was set (by a signal).
-  void check_stop(const sim_type& s) const {
+  template <class Sim>
+  void check_stop(const Sim& s) const {
     if (settings_.stop && *settings_.stop) throw interrupted(s.time());
   }
 
-  std::unique_ptr<sim_type> make_sim(const alpha_parameters& p) {
-    auto s = std::make_unique<sim_type>(*model_, stage_scheme(p));
-    s->on_output([this](const sim_type& x) {
+  /// Adds the session's observers to a driver that stage_drivers made.
+  template <class Sim>
+  void attach(Sim& s) {
+    s.on_output([this](const Sim& x) {
       record(x);
       show_progress(x);  // also at t0, before the first step
       check_stop(x);
     });
     // Every accepted step; the progress line itself redraws at most ten times a second.
-    s->on_step([this](const sim_type& x) {
+    s.on_step([this](const Sim& x) {
       show_progress(x);
       check_stop(x);
     });
-    return s;
   }
 
-  void show_progress(const sim_type& x) {
+  template <class Sim>
+  void show_progress(const Sim& x) {
     if (!progress_) return;
     const run_statistics& st = x.statistics();
     progress_->update(x.time(), st.last_step, st.last_iterations, st.newton_iterations);
-  }
-
-  static bool same_scheme(const alpha_parameters& a, const alpha_parameters& b) {
-    return a.alpha_m == b.alpha_m && a.alpha_f == b.alpha_f && a.beta == b.beta && a.gamma == b.gamma;
-  }
-
-  /// A simulation with the scheme p, continuing the current one (via an in-memory
-  /// checkpoint) if any. A change of scheme starts the new one afresh (its
-  /// pseudo-acceleration p = a, as at t = 0), unless the previous scheme is not
-  /// known (a $RESTORE of a checkpoint without the session's scheme record).
-  void use_scheme(const alpha_parameters& p) {
-    if (sim_ && same_scheme(scheme_, p)) {
-      scheme_known_ = true;
-      return;
-    }
-    auto next = make_sim(p);
-    if (sim_ && started_) {
-      std::stringstream ss;
-      sim_->save_checkpoint(ss);
-      next->load_checkpoint(ss);
-      if (scheme_known_) next->restart_scheme();
-    }
-    sim_ = std::move(next);
-    scheme_ = p;
-    scheme_known_ = true;
   }
 
   [[noreturn]] void rethrow(const pradis::error& e, const ast::call& c) const {
@@ -287,10 +269,15 @@ class session : public action_checker {
   /// Runs one stage; with SAVE, in pieces that end at the checkpoint times.
   void run_stage(const ast::call& c) {
     const stage_spec st = stage_options(c);  // again: $REPLACE may have changed $DATA values
-    use_scheme(st.scheme);
-    if (sim_->solver().ordering().level != st.optim)
-      sim_->set_solver(linalg::sparse_lu<linalg::optim_ordering>(linalg::optim_ordering{st.optim}));
-    const double t0 = started_ ? sim_->time() : 0.0;
+    if (st.bdf)
+      use_bdf(st.bdf_opt);
+    else
+      use_scheme(st.scheme);
+    visit([&](auto& s) {
+      if (s.solver().ordering().level != st.optim)
+        s.set_solver(linalg::sparse_lu<linalg::optim_ordering>(linalg::optim_ordering{st.optim}));
+    });
+    const double t0 = started_ ? time_now() : 0.0;
     if (started_ && !(st.opt.end > t0))
       fail(c.args_loc, "END = " + num(st.opt.end) + " must be after the current time " + num(t0));
     if (st.save > 0) check_save(st, t0);
@@ -299,7 +286,7 @@ class session : public action_checker {
                            " output rows in this stage (from t = " + num(t0) + " to END = " + num(st.opt.end) +
                            "); at most " + num(settings_.max_rows) + " rows are written in a run: make OUT larger");
     stage_report r{c.label, c.program, t0, st.opt.end, {}};
-    const run_statistics before = sim_->statistics();
+    const run_statistics before = visit([](const auto& s) { return s.statistics(); });
     struct progress_guard {
       io::progress_line* p;
       ~progress_guard() {
@@ -310,24 +297,24 @@ class session : public action_checker {
     try {
       if (st.save > 0) {
         for (;;) {
-          const double next = next_save_time(started_ ? sim_->time() : t0, st.save);
+          const double next = next_save_time(started_ ? time_now() : t0, st.save);
           const double tol = 1e-9 * st.save;
           const bool last = !(next < st.opt.end - tol);
           run_options o = st.opt;
           if (!last) o.end = next;
-          (void)sim_->run(o);
+          visit([&](auto& s) { (void)s.run(o); });
           started_ = true;
           if (!last || std::abs(next - st.opt.end) <= tol) write_interval_checkpoint(c);
           if (last) break;
         }
       } else {
-        (void)sim_->run(st.opt);
+        visit([&](auto& s) { (void)s.run(st.opt); });
       }
     } catch (const pradis::error& e) {
       rethrow(e, c);
     }
     started_ = true;
-    r.stats = sim_->statistics() - before;
+    r.stats = visit([](const auto& s) { return s.statistics(); }) - before;
     if (progress_) progress_->end();
     note("stage " + std::to_string(reports_.size() + 1) + (c.label.empty() ? "" : " '" + c.label + "'") + " " +
          c.program + ": t = " + num(r.t0) + " .. " + num(r.t1) + ", " + std::to_string(r.stats.steps) + " steps, " +
@@ -340,10 +327,10 @@ class session : public action_checker {
   void write_interval_checkpoint(const ast::call& c) {
     if (!settings_.write_files) return;
     char t[40];
-    std::snprintf(t, sizeof t, "%.15g", sim_->time());
+    std::snprintf(t, sizeof t, "%.15g", time_now());
     const std::string p = path_in_output(settings_.stem + ".t" + t + ".chk");
     write_checkpoint(p, c.loc);
-    note("checkpoint: " + p + " (t = " + num(sim_->time()) + ", SAVE of " + c.program + ")");
+    note("checkpoint: " + p + " (t = " + num(time_now()) + ", SAVE of " + c.program + ")");
     files_.push_back(p);
   }
 
@@ -416,24 +403,16 @@ class session : public action_checker {
     }
   }
 
-  /// The record a session appends to a checkpoint: the scheme's four parameters
-  /// and this tag at the very end (a checkpoint of the library has none).
-  static constexpr char scheme_tag[8] = {'P', 'R', 'L', 'A', 'N', 'G', '0', '1'};
-  static constexpr std::size_t scheme_record = 4 * sizeof(double) + sizeof scheme_tag;
-
-  /// Writes the simulation's checkpoint followed by the scheme record.
+  /// Writes the current driver's checkpoint followed by the scheme record.
   void write_checkpoint(const std::string& p, const location& where) {
     errno = 0;
     std::ofstream f(p, std::ios::binary);
     if (!f) fail(where, "cannot write the checkpoint '" + p + "'" + os_reason());
     try {
-      sim_->save_checkpoint(f);
+      write_checkpoint_to(f);
     } catch (const pradis::error& e) {
       fail(where, e.message());
     }
-    const double q[4] = {scheme_.alpha_m, scheme_.alpha_f, scheme_.beta, scheme_.gamma};
-    f.write(reinterpret_cast<const char*>(q), sizeof q);
-    f.write(scheme_tag, sizeof scheme_tag);
     errno = 0;
     f.close();
     if (!f) fail(where, "cannot write the checkpoint '" + p + "'" + os_reason());
@@ -443,7 +422,7 @@ class session : public action_checker {
     if (!started_) fail(a.loc, "$SAVE before any stage has run: nothing to save");
     const std::string p = path_in_output(a.path);
     write_checkpoint(p, a.loc);
-    note("checkpoint: " + p + " (t = " + num(sim_->time()) + ")");
+    note("checkpoint: " + p + " (t = " + num(time_now()) + ")");
     files_.push_back(p);
   }
 
@@ -453,39 +432,12 @@ class session : public action_checker {
     std::ifstream f(p, std::ios::binary);
     if (!f) fail(a.loc, "cannot read the checkpoint '" + p + "'" + os_reason());
     const std::string bytes{std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-    // The scheme that wrote it, if the session's record is there.
-    alpha_parameters q = stoermer{}.coefficients_set();
-    bool known = false;
-    if (bytes.size() >= scheme_record &&
-        std::memcmp(bytes.data() + bytes.size() - sizeof scheme_tag, scheme_tag, sizeof scheme_tag) == 0) {
-      double v[4];
-      std::memcpy(v, bytes.data() + bytes.size() - scheme_record, sizeof v);
-      // Ranges of the four programs: alpha_m, alpha_f < 1, 0 < beta <= 1, 1/2 <= gamma <= 3/2.
-      const bool ok = std::isfinite(v[0]) && std::isfinite(v[1]) && v[0] < 1 && v[1] < 1 && v[2] > 0 &&
-                      v[2] <= 1 && v[3] >= 0.5 && v[3] <= 1.5;
-      if (!ok) fail(a.loc, "checkpoint '" + p + "': its record of the integration scheme is damaged");
-      q = {v[0], v[1], v[2], v[3]};
-      known = true;
-    }
-    sim_ = make_sim(q);
-    scheme_ = q;
-    scheme_known_ = known;
-    std::istringstream is(bytes);
-    try {
-      sim_->load_checkpoint(is);
-    } catch (const pradis::error& e) {
-      fail(a.loc, "checkpoint '" + p + "': " + e.message());
-    }
-    started_ = true;
-    note("restored: " + p + " (t = " + num(sim_->time()) + ")");
+    if (auto why = restore_from(bytes)) fail(a.loc, "checkpoint '" + p + "': " + *why);
+    note("restored: " + p + " (t = " + num(time_now()) + ")");
   }
 
   io::table results_{std::vector<std::string>{}};
-  std::unique_ptr<sim_type> sim_;
-  alpha_parameters scheme_{};
-  bool scheme_known_ = false;  ///< false after restoring a checkpoint without the scheme record
   std::unique_ptr<io::progress_line> progress_;
-  bool started_ = false;
   int displays_ = 0;
   run_settings settings_;
   std::vector<std::string> files_;

@@ -49,6 +49,7 @@
 #include "pradis/integrators/bdf/corrector.hpp"
 #include "pradis/integrators/bdf/history.hpp"
 #include "pradis/integrators/bdf/options.hpp"
+#include "pradis/integrators/checkpoint.hpp"
 #include "pradis/integrators/concepts.hpp"
 #include "pradis/integrators/driver_core.hpp"
 #include "pradis/integrators/failures.hpp"
@@ -190,6 +191,47 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   const assembler<model_type>& get_assembler() const noexcept { return asm_; }
   /// The linear solver.
   const Solver& solver() const noexcept { return solver_; }
+  /// Replaces the linear solver (e.g. another ordering) for the following steps;
+  /// the pattern is analysed again.
+  void set_solver(Solver s) {
+    solver_ = std::move(s);
+    jac_valid_ = false;
+    if (started_) build();
+  }
+
+  // ---- checkpoint and restart --------------------------------------------------
+  /// A fingerprint of the model's topology (see pradis::model_fingerprint).
+  std::uint64_t model_fingerprint() const { return pradis::model_fingerprint(m_); }
+  /// Writes a checkpoint in the format of pradis::simulation (checkpoint.hpp):
+  /// time, potentials (the pseudo-acceleration is the acceleration), the next
+  /// step, the statistics and every element's work and state vectors. Either
+  /// driver can continue from it: BDF starts every stage afresh at order 1 from
+  /// the state anyway, and an alpha scheme starts with p = a. Throws
+  /// invalid_option before the zero step.
+  void save_checkpoint(std::ostream& os) const {
+    if (!started_) throw error(error_code::invalid_option, "no checkpoint before the first stage has run");
+    write_checkpoint(os, model_fingerprint(),
+                     {t_, std::max(hist_.step(), 0.0), stats_.last_step, 0, stats_, s_, s_.a, m_.work_pool(),
+                      m_.old_state_pool(), m_.new_state_pool()});
+  }
+  /// Restores a checkpoint of the same model written by either driver (see
+  /// save_checkpoint()); the next run() starts its BDF history at order 1 from
+  /// it. A checkpoint of another model or format, or a damaged one, is refused
+  /// with io_error and the simulation is unchanged.
+  void load_checkpoint(std::istream& is) {
+    checkpoint_data c = read_checkpoint(is, model_fingerprint(), m_.dof_count(), m_.work_pool().size(),
+                                        m_.old_state_pool().size(), m_.new_state_pool().size());
+    detail::detect_sources(m_, prescribed_, log_);
+    s_ = std::move(c.state);
+    s_.p = s_.a;
+    build();
+    t_ = c.time;
+    stats_ = c.stats;
+    m_.work_pool() = std::move(c.work);
+    m_.old_state_pool() = std::move(c.old_state);
+    m_.new_state_pool() = std::move(c.new_state);
+    started_ = true;
+  }
 
  private:
   static std::string num(double x) { return detail::num(x); }

@@ -1,0 +1,122 @@
+// The BDF integration program of the model language: a damped oscillator
+// m x'' + c x' + k x = 0 against its exact solution (x(t) = e^(-z w t) (cos wd t
+// + z w / wd sin wd t), wd = w sqrt(1 - z^2)); stages of BDF and of the one-step
+// schemes following each other from the state the previous stage reached; a
+// $SAVE / $RESTORE between two BDF stages reproducing the uninterrupted run
+// bit for bit (both drivers write the same checkpoint format and BDF starts
+// every stage at order 1); OPTIM on a BDF stage; the keys BDF refuses.
+
+#include <cmath>
+#include <string>
+
+#include "lang_test_support.hpp"
+
+using namespace pradis;
+
+namespace {
+// m = 1, k = 4 pi^2 (w = 2 pi), c = 0.4 (z = c / (2 w) = 0.0318), x(0) = 1.
+const double w = 2 * M_PI, z = 0.4 / (2 * w), wd = w * std::sqrt(1 - z * z);
+double exact(double t) { return std::exp(-z * w * t) * (std::cos(wd * t) + z * w / wd * std::sin(wd * t)); }
+
+/// The oscillator model followed by `actions` (sections from $RUN on).
+std::string model_then(const std::string& actions) {
+  return "$DATA:\n    K = 39.47841760435743\n$FRAGMENT:\n#STRUCTURE:\n    Mass 'MASS (1; 1)\n"
+         "    Spring 'SPRING (1 0; K)\n    Damper 'DAMPER (1 0; 0.4)\n    Start 'X0 (1; 1)\n#OUTPUT:\n"
+         "    X 'X (1; 1)\n    Steps 'NSTEP ()\n" +
+         actions + "$END\n";
+}
+/// The oscillator model with the stage lines `stages` under $RUN (the first stage at line 13).
+std::string oscillator(const std::string& stages) { return model_then("$RUN:\n" + stages); }
+/// The largest |x - exact| over the output rows.
+double max_error(const lang::session& s) {
+  const io::table& t = s.results();
+  double e = 0;
+  for (std::size_t r = 0; r < t.rows(); ++r) e = std::max(e, std::abs(t.at(r, 1) - exact(t.at(r, 0))));
+  return e;
+}
+}  // namespace
+
+TEST_SUITE("lang/bdf") {
+  TEST_CASE("'BDF integrates the damped oscillator to its tolerance with far fewer steps than NEWMARK") {
+    auto b = lang_test::run(oscillator("    Calc 'BDF (END=4, OUT=0.05, SMAX=0.1, DRLTX=1E-8, DABSX=1E-8)\n"));
+    auto n = lang_test::run(oscillator("    Calc 'NEWMARK (END=4, OUT=0.05, SMAX=0.1, DRLTX=1E-8, DABSX=1E-8)\n"));
+    const double eb = max_error(*b), en = max_error(*n);
+    CAPTURE(eb);
+    CAPTURE(en);
+    // Local error control: the global error is a modest multiple of the tolerance
+    // over 4 periods (docs/bdf.md: about N steps times DRLTX at worst).
+    CHECK(eb < 2e-5);
+    CHECK(b->bdf_active());
+    REQUIRE(b->bdf_ptr() != nullptr);
+    CHECK(b->bdf_ptr()->order() >= 3);  // it has raised its order
+    const double steps_b = b->results().at(b->results().rows() - 1, 2);
+    const double steps_n = n->results().at(n->results().rows() - 1, 2);
+    CAPTURE(steps_b);
+    CAPTURE(steps_n);
+    CHECK(steps_b * 5 < steps_n);
+    REQUIRE(b->stages().size() == 1);
+    CHECK(b->stages()[0].program == "BDF");
+  }
+
+  TEST_CASE("BDF and one-step stages continue from each other's state") {
+    auto s = lang_test::run(oscillator("    A 'NEWMARK (END=1, OUT=0.05, SMAX=1E-3)\n"
+                                       "    B 'BDF (END=2, OUT=0.05, SMAX=0.1, DRLTX=1E-9, DABSX=1E-9)\n"
+                                       "    C 'HHT (END=3, OUT=0.05, SMAX=1E-3, ALPHA=-0.01)\n"
+                                       "    D 'BDF (END=4, OUT=0.05, SMAX=0.1, DRLTX=1E-9, DABSX=1E-9, MAXORD=3)\n"));
+    REQUIRE(s->stages().size() == 4);
+    CHECK(s->stages()[1].program == "BDF");
+    CHECK(s->stages()[1].t0 == 1.0);
+    CHECK(s->stages()[3].t0 == 3.0);
+    // Newmark at h = 1e-3 has a phase error of about (w h)^2 / 12 per radian:
+    // ~3.3e-6 rad per period; the other stages add less. A stage that started
+    // from a wrong state (e.g. at rest, or at t = 0) would be off by O(1).
+    const double e = max_error(*s);
+    CAPTURE(e);
+    CHECK(e < 5e-5);
+    CHECK(s->bdf_ptr()->options().max_order == 3);
+    CHECK(s->bdf_ptr()->order() <= 3);
+  }
+
+  TEST_CASE("$SAVE and $RESTORE between two BDF stages reproduce the uninterrupted run bit for bit") {
+    const auto dir = lang_test::scratch_dir("bdfsave");
+    const std::string first = "$RUN:\n    A 'BDF (END=1, OUT=0.1, SMAX=0.1, DRLTX=1E-7)\n";
+    const std::string second = "$RUN:\n    B 'BDF (END=2, OUT=0.1, SMAX=0.1, DRLTX=1E-7)\n";
+    auto whole = lang_test::build(model_then(first + second));
+    whole->run({.output_dir = dir.string(), .write_files = false});
+    auto saved = lang_test::build(model_then(first + "$SAVE \"bdf.chk\"\n"));
+    saved->run({.output_dir = dir.string(), .stem = "a", .plot = false});
+    auto again = lang_test::build(model_then("$RESTORE \"bdf.chk\"\n" + second));
+    again->run({.output_dir = dir.string(), .write_files = false});
+    REQUIRE(again->bdf_active());
+    CHECK(again->bdf_ptr()->time() == 2.0);
+    const global_state& a = again->bdf_ptr()->state();
+    const global_state& b = whole->bdf_ptr()->state();
+    for (Eigen::Index k = 0; k < b.u.size(); ++k) {
+      CHECK(a.u(k) == b.u(k));
+      CHECK(a.v(k) == b.v(k));
+    }
+    CHECK(again->bdf_ptr()->statistics().steps == whole->bdf_ptr()->statistics().steps);
+    std::filesystem::remove_all(dir);
+  }
+
+  TEST_CASE("OPTIM picks the ordering of a BDF stage") {
+    auto s = lang_test::run(oscillator("    Calc 'BDF (END=0.1, OPTIM=3)\n"));
+    CHECK(s->bdf_ptr()->solver().ordering().level == 3);
+  }
+
+  TEST_CASE("keys BDF refuses, and MAXORD out of range, are located errors") {
+    std::string e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, BETA=0.3)\n"));
+    CHECK(e.find("test.prd:13:") != std::string::npos);
+    CHECK(e.find("key BETA belongs to NEWMARK, not to BDF") != std::string::npos);
+    e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, CONTROL=1E-3)\n"));
+    CHECK(e.find("test.prd:13:") != std::string::npos);
+    CHECK(e.find("key CONTROL does not apply to BDF") != std::string::npos);
+    e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, MAXORD=6)\n"));
+    CHECK(e.find("test.prd:13:") != std::string::npos);
+    CHECK(e.find("MAXORD") != std::string::npos);
+    e = lang_test::error_of(oscillator("    Calc 'NEWMARK (END=1, MAXORD=2)\n"));
+    CHECK(e.find("key MAXORD belongs to BDF, not to NEWMARK") != std::string::npos);
+    e = lang_test::error_of(oscillator("    Calc 'BDF (OUT=1)\n"));
+    CHECK(e.find("BDF needs END=<end time>") != std::string::npos);
+  }
+}
