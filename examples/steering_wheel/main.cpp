@@ -12,9 +12,10 @@
 // rim and spokes as lines, the head as an octahedron; open it in ParaView) and,
 // unless --no-plot, a plot (PNG, with gnuplot).
 //
-// Usage: steering_wheel [output-directory] [--no-plot] [--quick] [--elastic]
+// Usage: steering_wheel [output-directory] [--no-plot] [--quick] [--elastic] [--rim N]
 //        (--quick: the first 2 ms, for the ctest smoke run;
-//         --elastic: contact damping 0, to check the energy balance)
+//         --elastic: contact damping 0, to check the energy balance;
+//         --rim N: N beam elements around the rim, a multiple of 4 (default 16))
 
 #include <algorithm>
 #include <array>
@@ -38,13 +39,15 @@ int main(int argc, char** argv) try {
   using namespace pradis;
   std::string dir = "out";
   bool plot = true, quick = false, elastic = false;
+  int rim = 16;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--no-plot") plot = false;
     else if (a == "--quick") quick = true;
     else if (a == "--elastic") elastic = true;
+    else if (a == "--rim" && i + 1 < argc) rim = std::atoi(argv[++i]);
     else if (a == "--help" || a == "-h") {
-      std::cout << "usage: steering_wheel [output-directory] [--no-plot] [--quick] [--elastic]\n";
+      std::cout << "usage: steering_wheel [output-directory] [--no-plot] [--quick] [--elastic] [--rim N]\n";
       return 0;
     } else dir = a;
   }
@@ -53,6 +56,8 @@ int main(int argc, char** argv) try {
   const double g = 9.81, threshold = 80;  // [m/s^2]; the deceleration threshold [g]
   steering_wheel::parameters P;
   if (elastic) P.c_contact = 0;
+  if (rim < 4 || rim % 4 != 0) throw error(error_code::invalid_option, "--rim " + std::to_string(rim) + ": a multiple of 4 is needed");
+  P.rim_segments = rim;
   steering_wheel::model_type m;
   const steering_wheel::handles h = steering_wheel::build(m, P);
 
@@ -81,7 +86,7 @@ int main(int argc, char** argv) try {
   io::table out({"head deceleration [g]", "head displacement [mm]", "head velocity [m/s]", "contact force [N]",
                  "junction deflection [mm]", "kinetic energy [J]", "elastic energy [J]", "contact energy [J]",
                  "total energy [J]"});
-  std::vector<double> t, decel;
+  std::vector<double> t, decel, fz;
   double e_min = 1e300, e_max = 0;
   const auto& hit = h.nodes[static_cast<std::size_t>(h.impact)];
   long output = 0;
@@ -94,6 +99,7 @@ int main(int argc, char** argv) try {
     e_max = std::max(e_max, e.total());
     t.push_back(s.time());
     decel.push_back(a);
+    fz.push_back(f[2]);
     if (output++ % 50 == 0) vtk.write(s);  // every 0.5 ms
     out.add_row(s.time(), {a, -s.u(h.head_x[2]) * 1e3, s.v(h.head_x[2]), std::hypot(f[0], f[1], f[2]),
                            -s.u(hit.x[2]) * 1e3, e.kinetic, e.elastic, e.contact, e.total()});
@@ -110,6 +116,8 @@ int main(int argc, char** argv) try {
   const post::interval above = post::longest_above(t, decel, threshold);
   const double total_above = post::cumulative_above(t, decel, threshold);
   const double e0 = 0.5 * P.head_mass * P.v0 * P.v0;
+  double impulse = 0;  // of the contact forces on the head along Z (trapezoidal rule over the steps)
+  for (std::size_t i = 1; i < t.size(); ++i) impulse += 0.5 * (t[i] - t[i - 1]) * (fz[i] + fz[i - 1]);
   // The spring-mass estimate: the head on the wheel's static stiffness at the junction in
   // series with the contact spring: a_max = v0 sqrt(k/m), contact time pi sqrt(m/k).
   const double k_wheel = steering_wheel::static_stiffness(P, 10.0);
@@ -126,7 +134,8 @@ int main(int argc, char** argv) try {
               << " to " << above.end * 1e3 << " ms); in total " << total_above * 1e3 << " ms\n";
   else
     std::cout << "the deceleration stays below " << threshold << " g\n";
-  std::cout << "head velocity at the end " << sim.v(h.head_x[2]) << " m/s (impact " << -P.v0 << " m/s)\n"
+  std::cout << "head velocity at the end " << sim.v(h.head_x[2]) << " m/s (impact " << -P.v0 << " m/s); momentum change "
+            << P.head_mass * (sim.v(h.head_x[2]) + P.v0) << " N s, impulse of the contact forces " << impulse << " N s\n"
             << "energy: initial " << e0 << " J, total over the run " << e_min << " .. " << e_max << " J, at the end "
             << steering_wheel::energy(m, h, P).total() << " J\n"
             << "spring-mass estimate: wheel stiffness " << k_wheel << " N/m (static, at the junction), with the "
