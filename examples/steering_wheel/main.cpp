@@ -45,7 +45,7 @@ int main(int argc, char** argv) try {
     if (a == "--no-plot") plot = false;
     else if (a == "--quick") quick = true;
     else if (a == "--elastic") elastic = true;
-    else if (a == "--rim" && i + 1 < argc) rim = std::atoi(argv[++i]);
+    else if (a == "--rim") rim = i + 1 < argc ? std::atoi(argv[++i]) : 0;
     else if (a == "--help" || a == "-h") {
       std::cout << "usage: steering_wheel [output-directory] [--no-plot] [--quick] [--elastic] [--rim N]\n";
       return 0;
