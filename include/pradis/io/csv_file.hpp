@@ -22,14 +22,15 @@ namespace pradis::io {
 /// One CSV file: header `t,<names>`, then one line per row, full double precision (%.17g).
 class csv_file {
  public:
-  /// Creates `<path>.part` and writes the header (time is the first column, "t").
-  /// Throws pradis::error (io_error) if the file cannot be created or written.
-  csv_file(std::string path, const std::vector<std::string>& names)
+  /// Creates `<path>.part` and writes the header: `first` (time, "t", unless
+  /// given), then the names. Throws pradis::error (io_error) if the file cannot
+  /// be created or written.
+  csv_file(std::string path, const std::vector<std::string>& names, const std::string& first = "t")
       : path_(std::move(path)), temp_(path_ + ".part"), columns_(names.size()) {
     errno = 0;
     f_ = std::fopen(temp_.c_str(), "wb");
     if (!f_) fail("cannot create");
-    std::string head = "t";
+    std::string head = quote(first);
     for (const auto& n : names) head += ',' + quote(n);
     head += '\n';
     put(head);
@@ -61,6 +62,21 @@ class csv_file {
       flush();
       last_flush_ = now;
     }
+  }
+
+  /// Appends one row whose first column is a text (a name) instead of a time.
+  void add_row(const std::string& label, std::span<const double> values) {
+    if (values.size() != columns_)
+      throw error(error_code::invalid_option, "CSV row has " + std::to_string(values.size()) + " values for " +
+                                                  std::to_string(columns_) + " columns");
+    line_ = quote(label);
+    for (double x : values) {
+      line_ += ',';
+      append(x);
+    }
+    line_ += '\n';
+    put(line_);
+    ++rows_;
   }
 
   /// Hands the buffered rows to the operating system (checked).

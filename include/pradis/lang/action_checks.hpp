@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -222,6 +223,8 @@ class action_checker : public model_builder {
   struct display_spec {
     std::vector<int> columns;
     double start = -HUGE_VAL, end = HUGE_VAL;
+    std::optional<double> threshold;  ///< PEAK: THRESHOLD
+    bool magnitude = false;           ///< PEAK: MAGNITUDE=1
   };
 
   display_spec display_options(const ast::call& c) const {
@@ -236,11 +239,18 @@ class action_checker : public model_builder {
             d.start = scalar(it.value.front(), "START");
           else if (it.text == "END")
             d.end = scalar(it.value.front(), "END");
+          else if (it.text == "THRESHOLD" && c.program == "PEAK")
+            d.threshold = scalar(it.value.front(), "THRESHOLD");
+          else if (it.text == "MAGNITUDE" && c.program == "PEAK")
+            d.magnitude = whole(it.value.front(), "MAGNITUDE", 0, 1) == 1;
           else if (it.text == "OUT" || it.text == "FORMF")
             fail(it.loc,
                  "key " + it.text + " of " + c.program + " is not implemented by pradis yet (implemented: START END)");
           else
-            fail(it.loc, "unknown key " + it.text + " of " + c.program + did_you_mean(it.text, {"START", "END"}));
+            fail(it.loc, "unknown key " + it.text + " of " + c.program +
+                             did_you_mean(it.text, c.program == "PEAK"
+                                                       ? std::vector<std::string>{"START", "END", "THRESHOLD", "MAGNITUDE"}
+                                                       : std::vector<std::string>{"START", "END"}));
         } else if (it.what == ast::item::kind::name && c.program == "VTK") {
           fail(it.loc, "VTK draws the model's spatial elements and takes no output labels (only START=, END=)");
         } else if (it.what == ast::item::kind::name) {

@@ -100,6 +100,11 @@ inline const std::vector<program_info>& display_programs() {
        "START - first time shown (start of the run)\nEND - last time shown (end of the run)\n"},
       {"DISP", "graphs of outputs over time, one panel each, written as PNG (needs gnuplot)", "Graphs 'DISP ()",
        "START - first time shown (start of the run)\nEND - last time shown (end of the run)\n"},
+      {"PEAK", "peak of each output and, with THRESHOLD, the longest and the total time at or above it (crossings "
+               "interpolated linearly), written as CSV and to the log",
+       "Head 'PEAK (Deceleration; THRESHOLD=80, START=0, END=0.05)",
+       "THRESHOLD - level for the time above it (none: the peak only)\nMAGNITUDE - 1: peak of |y| instead of the "
+       "largest y (0)\nSTART - first time used (start of the run)\nEND - last time used (end of the run)\n"},
       {"VTK", "animation of the model's spatial elements (beams, springs, joints, contacts, plates) as a VTK time "
               "series for ParaView: <dir>/vtk/<stem>.<label>.pvd and one .vtu per output time",
        "Animation 'VTK (START=0, END=1)",

@@ -6,6 +6,7 @@
 /// and the report of one stage.
 
 #include <csignal>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -14,6 +15,7 @@
 
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "pradis/io/post.hpp"
 #include "pradis/lang/source.hpp"
 #include "pradis/spatial/node_state.hpp"
 
@@ -88,6 +90,16 @@ struct output_column {
   std::string statistic;             ///< statistic: NSTEP, NITER, ...
   rotation_node rotation{};          ///< angular_velocity ('W, component in order) and norm ('LQ)
   std::string nodes;                 ///< 'W, 'LQ: the three node numbers as written, for the label
+};
+
+/// What a 'PEAK display found for one output (see post.hpp for the definitions).
+struct peak_summary {
+  std::string display;             ///< the display's label (or PEAK<k>)
+  std::string output;              ///< the output's label
+  post::peak_value peak;           ///< the peak sample
+  std::optional<double> threshold;  ///< THRESHOLD, if given
+  post::interval longest;          ///< the longest interval at or above it (duration 0 if none or no threshold)
+  double total = 0;                ///< the total time at or above it
 };
 
 /// What one run stage did (for the report of `pradis run`).

@@ -27,6 +27,7 @@
 #include "pradis/io/table.hpp"
 #include "pradis/lang/action_checks.hpp"
 #include "pradis/lang/drivers.hpp"
+#include "pradis/lang/peaks.hpp"
 #include "pradis/lang/run_types.hpp"
 #include "pradis/linalg/sparse_lu.hpp"
 #include "pradis/spatial/node_state.hpp"
@@ -97,6 +98,8 @@ class session : public action_checker, public stage_drivers<session> {
   const std::vector<std::string>& files() const noexcept { return files_; }
   /// One report per executed stage.
   const std::vector<stage_report>& stages() const noexcept { return reports_; }
+  /// What the 'PEAK displays found, one entry per display and output, in file order.
+  const std::vector<peak_summary>& summaries() const noexcept { return summaries_; }
   /// The plots the 'DISP calls of the run asked for (their CSV files are written).
   const std::vector<plot_request>& plots() const noexcept { return plots_; }
 
@@ -343,6 +346,7 @@ class session : public action_checker, public stage_drivers<session> {
   void display(const ast::call& c) {
     const auto d = display_options(c);
     if (c.program == "VTK") return animation(c, d);
+    if (c.program == "PEAK") return peaks(c, d);
     std::vector<std::string> names;
     for (int k : d.columns) names.push_back(outputs_[static_cast<std::size_t>(k)].label);
     io::table t(names);
@@ -375,6 +379,28 @@ class session : public action_checker, public stage_drivers<session> {
     }
     files_.push_back(vtk.collection().string());
     note(c.program + ": " + vtk.collection().string() + " (" + std::to_string(vtk.frames()) + " frames)");
+  }
+
+  /// A 'PEAK display: per output, the peak and (THRESHOLD) the longest and total
+  /// time at or above the threshold over the rows between START and END; kept in
+  /// summaries(), written to the log and to `<stem>.<label>.csv`.
+  void peaks(const ast::call& c, const display_spec& d) {
+    ++displays_;
+    std::vector<std::string> labels;
+    for (const auto& o : outputs_) labels.push_back(o.label);
+    std::vector<peak_summary> found;
+    try {
+      found = peak_summaries(results_, labels, d.columns, d.start, d.end, d.threshold, d.magnitude,
+                             c.label.empty() ? "PEAK" + std::to_string(displays_) : c.label);
+    } catch (const pradis::error& e) {  // no row in the window, or a non-finite output value
+      fail(c.loc, c.program + ": " + e.message());
+    }
+    for (const auto& p : found) note(c.program + ": " + describe(p));
+    summaries_.insert(summaries_.end(), found.begin(), found.end());
+    if (!settings_.write_files) return;
+    const std::string path = path_in_output(display_file(c, displays_)) + ".csv";
+    write_peak_csv(path, found);
+    files_.push_back(path);
   }
 
   /// `<stem>.<label>` of the k-th display (1-based), without extension.
@@ -444,6 +470,7 @@ class session : public action_checker, public stage_drivers<session> {
   std::vector<stage_report> reports_;
   std::unique_ptr<io::csv_file> csv_;  ///< `<stem>.csv` while the run writes it
   std::vector<plot_request> plots_;
+  std::vector<peak_summary> summaries_;
   std::optional<io::vtk_scene> scene_;                    ///< the animation's geometry, if a 'VTK display asks for it
   std::vector<std::vector<spatial::point_motion>> frames_;  ///< its point motions, one entry per results_ row
 };
