@@ -1,0 +1,313 @@
+// TRIPL, the 12-DOF triangle plate (membrane CST + Morley bending), and its mesh helper.
+// References: L. S. D. Morley, "The constant-moment plate-bending element", J. Strain
+// Analysis 6 (1971) 20-24 (the element passes the constant-moment patch test);
+// S. Timoshenko and S. Woinowsky-Krieger, Theory of Plates and Shells, 2nd ed. (1959):
+// table 8 (simply supported square plate under uniform load q, centre deflection
+// 0.00406 q a^4 / D, nu = 0.3) and table 35 (clamped square plate, 0.00126 q a^4 / D);
+// the Navier solution for the first frequency of the simply supported square plate,
+// omega = 2 pi^2 / a^2 sqrt(D / (rho h)); A. W. Leissa, Vibration of Plates, NASA SP-160
+// (1969), table 4.23: clamped square plate omega a^2 sqrt(rho h / D) = 35.985.
+
+#include <doctest/doctest.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "../elements/element_test_support.hpp"
+#include "pradis/elements/library.hpp"
+#include "pradis/elements/spatial/plate_mesh.hpp"
+#include "pradis/testing/jacobian_check.hpp"
+
+using namespace pradis;
+using namespace pradis::elements;
+using pradis_element_tests::check_error;
+using pradis_element_tests::error_from;
+
+namespace {
+constexpr double pi = std::numbers::pi;
+using plate_model = model<triangle_plate>;
+
+/// The global matrices of a plate model from the elements' evaluate at u = v = a = 0:
+/// K, the lumped mass diagonal and the load F = -f(0) (equation i is model DOF i + 1).
+struct assembled {
+  Eigen::SparseMatrix<double> k;
+  Eigen::VectorXd m, f;
+};
+
+assembled assemble(plate_model& m) {
+  const int n = m.dof_count() - 1;
+  std::vector<Eigen::Triplet<double>> trip;
+  assembled out;
+  out.m = Eigen::VectorXd::Zero(n);
+  out.f = Eigen::VectorXd::Zero(n);
+  for (const auto& inst : m.instances<triangle_plate>()) {
+    local_input<triangle_plate> in;
+    local_output<triangle_plate> lo;
+    std::array<double, 6> w{};
+    element_context ctx("TRIPL", inst.name);
+    ctx.work = w;
+    inst.element.new_integration(ctx);
+    inst.element.evaluate(in, lo, ctx);
+    for (int r = 0; r < 12; ++r) {
+      const int gr = inst.dofs[static_cast<std::size_t>(r)] - 1;
+      if (gr < 0) continue;
+      out.f(gr) -= lo.f(r);
+      out.m(gr) += lo.M(r, r);
+      for (int c = 0; c < 12; ++c) {
+        const int gc = inst.dofs[static_cast<std::size_t>(c)] - 1;
+        if (gc >= 0 && lo.K(r, c) != 0.0) trip.emplace_back(gr, gc, lo.K(r, c));
+      }
+    }
+  }
+  out.k.resize(n, n);
+  out.k.setFromTriplets(trip.begin(), trip.end());
+  return out;
+}
+
+/// A square plate a x a of an n x n structured mesh, simply supported or clamped on all
+/// four edges, under the uniform pressure q (TRIPL's own pressure load).
+struct square_plate {
+  plate_model m;
+  plate_mesh mesh;
+  plate_sides sides;
+  plate_dofs d;
+  double a = 1, e = 1e6, nu = 0.3, h = 0.01, rho = 100, q = 1;
+  square_plate(int n, bool clamped) {
+    mesh = rectangular_plate_mesh(a, a, n, n);
+    sides = find_plate_sides(mesh);
+    d = add_plate_mesh(m, mesh, sides, {e, nu, h, rho, q}, boundary_fixity(mesh, sides, clamped));
+  }
+  double rigidity() const { return e * h * h * h / (12 * (1 - nu * nu)); }
+  /// The centre vertex's deflection DOF (n even).
+  dof centre(int n) const { return d.vertex[static_cast<std::size_t>((n / 2) * (n + 1) + n / 2)][2]; }
+};
+
+/// Static centre deflection of the square plate, in units of q a^4 / D.
+double centre_deflection(int n, bool clamped) {
+  square_plate s(n, clamped);
+  const assembled g = assemble(s.m);
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(g.k);
+  REQUIRE(solver.info() == Eigen::Success);
+  const Eigen::VectorXd u = solver.solve(g.f);
+  return u(s.centre(n).index - 1) / (s.q * std::pow(s.a, 4) / s.rigidity());
+}
+
+/// First natural frequency of the square plate in units of sqrt(D / (rho h)) / a^2, by
+/// inverse iteration x <- K^-1 M x on the assembled matrices (the massless side rotations
+/// follow the vertex deflections through K, which is their exact static condensation) and
+/// the Rayleigh quotient x^T K x / x^T M x. The start vector, the uniform deflection, is
+/// symmetric like the first mode; the next symmetric mode has the frequency ratio 5
+/// (Navier (1, 3) and (3, 1)), so 30 iterations converge far below the errors compared.
+double first_frequency(int n, bool clamped) {
+  square_plate s(n, clamped);
+  s.q = 0;
+  const assembled g = assemble(s.m);
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(g.k);
+  REQUIRE(solver.info() == Eigen::Success);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(g.m.size());
+  for (const auto& v : s.d.vertex)
+    if (v[2].index > 0) x(v[2].index - 1) = 1;
+  for (int it = 0; it < 30; ++it) {
+    const Eigen::VectorXd y = solver.solve(g.m.asDiagonal() * x);  // a temporary: no aliasing of x
+    x = y / y.norm();
+  }
+  const double lambda = x.dot(g.k * x) / x.dot(g.m.asDiagonal() * x);
+  return std::sqrt(lambda) * s.a * s.a / std::sqrt(s.rigidity() / (s.rho * s.h));
+}
+
+/// A 3 x 3 mesh of the unit square with its four interior vertices moved off the grid,
+/// then rotated into a tilted plane and shifted: an irregular patch in space.
+struct tilted_patch {
+  plate_mesh mesh;
+  plate_sides sides;
+  Eigen::Matrix3d rot;
+  Eigen::Vector3d shift{0.3, -0.7, 1.1};
+  tilted_patch() {
+    mesh = rectangular_plate_mesh(1, 1, 3, 3);
+    const std::array<std::array<double, 3>, 4> moves{{{5, 0.07, -0.05}, {6, -0.04, 0.06}, {9, 0.05, 0.08}, {10, -0.06, -0.03}}};
+    for (const auto& mv : moves) mesh.vertices[static_cast<std::size_t>(mv[0])] += spatial::vec3(mv[1], mv[2], 0);
+    rot = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -0.5).normalized()).toRotationMatrix();
+    for (auto& v : mesh.vertices) v = rot * v + shift;
+    sides = find_plate_sides(mesh);
+  }
+  /// Plane coordinates (x, y) of a point of the patch.
+  Eigen::Vector2d plane(const spatial::vec3& p) const { return (rot.transpose() * (p - shift)).head<2>(); }
+};
+}  // namespace
+
+TEST_SUITE("spatial/plate") {
+  TEST_CASE("TRIPL: the Jacobian of a tilted triangle with mixed side signs matches finite differences") {
+    testing::jacobian_checker<triangle_plate> chk(triangle_plate(triangle_plate::example()));
+    local_input<triangle_plate> at;
+    for (int i = 0; i < 12; ++i) {
+      at.u(i) = 0.01 * std::sin(1.0 + i);
+      at.a(i) = std::cos(2.0 * i);
+    }
+    CHECK(pradis_element_tests::jacobian_passes(chk.check(at)));
+  }
+
+  TEST_CASE("patch test (Morley 1971): constant curvature and constant membrane strain on an irregular tilted patch") {
+    const tilted_patch pt;
+    plate_model m;
+    const double e = 2e5, nu = 0.3, h = 0.02, d = e * h * h * h / (12 * (1 - nu * nu)), cm = e * h / (1 - nu * nu);
+    const plate_dofs pd = add_plate_mesh(m, pt.mesh, pt.sides, {e, nu, h, 0, 0});
+    // w = (a x^2 + b x y + c y^2) / 2 along the plane normal, in-plane u = (ex x + g y / 2, g x / 2 + ey y).
+    const double a = 0.3, b = -0.2, c = 0.5, ex = 1e-3, ey = -2e-3, gm = 1.5e-3;
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(m.dof_count() - 1);
+    for (std::size_t i = 0; i < pt.mesh.vertices.size(); ++i) {
+      const Eigen::Vector2d x = pt.plane(pt.mesh.vertices[i]);
+      const Eigen::Vector3d local(ex * x(0) + gm / 2 * x(1), gm / 2 * x(0) + ey * x(1),
+                                  (a * x(0) * x(0) + b * x(0) * x(1) + c * x(1) * x(1)) / 2);
+      const Eigen::Vector3d dg = pt.rot * local;
+      for (int k = 0; k < 3; ++k) u(pd.vertex[i][static_cast<std::size_t>(k)].index - 1) = dg(k);
+    }
+    // Side DOF: rotation about the axis from the lower to the higher vertex number, i.e. the
+    // slope dw/dm at the side's middle along m = n x t.
+    for (std::size_t k = 0; k < pt.sides.sides.size(); ++k) {
+      const Eigen::Vector2d p0 = pt.plane(pt.mesh.vertices[static_cast<std::size_t>(pt.sides.sides[k][0])]);
+      const Eigen::Vector2d p1 = pt.plane(pt.mesh.vertices[static_cast<std::size_t>(pt.sides.sides[k][1])]);
+      const Eigen::Vector2d t = (p1 - p0).normalized(), mid = 0.5 * (p0 + p1), mvec(-t(1), t(0));
+      const Eigen::Vector2d grad(a * mid(0) + b / 2 * mid(1), b / 2 * mid(0) + c * mid(1));
+      u(pd.side[k].index - 1) = grad.dot(mvec);
+    }
+    // Exact resultants in the plane frame: M = -D [w_xx + nu w_yy, w_yy + nu w_xx, (1 - nu) w_xy].
+    Eigen::Matrix3d m_exact = Eigen::Matrix3d::Zero(), n_exact = Eigen::Matrix3d::Zero();
+    m_exact.topLeftCorner<2, 2>() << -d * (a + nu * c), -d * (1 - nu) * b / 2, -d * (1 - nu) * b / 2, -d * (c + nu * a);
+    n_exact.topLeftCorner<2, 2>() << cm * (ex + nu * ey), cm * (1 - nu) / 2 * gm, cm * (1 - nu) / 2 * gm, cm * (ey + nu * ex);
+    m_exact = pt.rot * m_exact * pt.rot.transpose();
+    n_exact = pt.rot * n_exact * pt.rot.transpose();
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(u.size());
+    double mworst = 0, nworst = 0;
+    for (const auto& inst : m.instances<triangle_plate>()) {
+      local_input<triangle_plate> in;
+      for (int r = 0; r < 12; ++r) {
+        const int g = inst.dofs[static_cast<std::size_t>(r)];
+        in.u(r) = g > 0 ? u(g - 1) : 0.0;
+      }
+      local_output<triangle_plate> lo;
+      std::array<double, 6> w{};
+      element_context ctx("TRIPL", inst.name);
+      ctx.work = w;
+      inst.element.evaluate(in, lo, ctx);
+      for (int r = 0; r < 12; ++r) f(inst.dofs[static_cast<std::size_t>(r)] - 1) += lo.f(r);
+      const elements::detail::plate_geometry geo = inst.element.geometry();
+      Eigen::Matrix<double, 3, 2> q;
+      q << geo.e1, geo.e2;
+      Eigen::Matrix2d ml, nl;
+      ml << w[3], w[5], w[5], w[4];
+      nl << w[0], w[2], w[2], w[1];
+      mworst = std::max(mworst, (q * ml * q.transpose() - m_exact).norm() / m_exact.norm());
+      nworst = std::max(nworst, (q * nl * q.transpose() - n_exact).norm() / n_exact.norm());
+    }
+    // Interior residual: every DOF but the boundary vertices' translations and boundary side rotations.
+    const plate_fixity bnd = boundary_fixity(pt.mesh, pt.sides, true);
+    double rworst = 0, fscale = 0;
+    for (std::size_t i = 0; i < pt.mesh.vertices.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const double fi = std::abs(f(pd.vertex[i][static_cast<std::size_t>(k)].index - 1));
+        fscale = std::max(fscale, fi);
+        if (!bnd.vertex[i][static_cast<std::size_t>(k)]) rworst = std::max(rworst, fi);
+      }
+    for (std::size_t k = 0; k < pt.sides.sides.size(); ++k) {
+      const double fi = std::abs(f(pd.side[k].index - 1));
+      fscale = std::max(fscale, fi);
+      if (!bnd.side[k]) rworst = std::max(rworst, fi);
+    }
+    MESSAGE("patch: worst relative moment error ", mworst, ", membrane ", nworst, ", interior residual ",
+            rworst / fscale, " of the largest boundary flow");
+    CHECK(mworst < 1e-11);
+    CHECK(nworst < 1e-11);
+    CHECK(rworst < 1e-11 * fscale);
+  }
+
+  TEST_CASE("rigid-body motions: translations give zero flows exactly, a rotation by phi flows of order phi^2") {
+    const triangle_plate el(triangle_plate::example());
+    const elements::detail::plate_geometry g = el.geometry();
+    const std::array<spatial::vec3, 3> p{spatial::vec3(el.p.x1, el.p.y1, el.p.z1), spatial::vec3(el.p.x2, el.p.y2, el.p.z2),
+                                         spatial::vec3(el.p.x3, el.p.y3, el.p.z3)};
+    const std::array<double, 3> sg{el.p.s12, el.p.s23, el.p.s31};
+    triangle_plate::parameters q = el.p;
+    q.pressure = 0;
+    const triangle_plate free_el(q);
+    const auto flows = [&](const local_input<triangle_plate>& in) {
+      local_output<triangle_plate> lo;
+      std::array<double, 6> w{};
+      element_context ctx("TRIPL", "t");
+      ctx.work = w;
+      free_el.evaluate(in, lo, ctx);
+      return lo;
+    };
+    local_input<triangle_plate> tr;
+    for (int i = 0; i < 3; ++i) tr.u.segment<3>(3 * i) = spatial::vec3(0.3, -1.2, 0.7);
+    const auto lt = flows(tr);
+    CHECK(lt.f.norm() < 1e-12 * lt.K.norm());
+    // Finite rotation R about the axis through P1: displacements (R - I)(P_i - P1); side rotations the
+    // angle's component along each side's axis (s_k times its tangent). Linear theory: f = O(phi^2).
+    const spatial::vec3 axis = spatial::vec3(0.3, -0.5, 0.8).normalized();
+    std::array<double, 2> fn{};
+    for (int j = 0; j < 2; ++j) {
+      const double phi = j == 0 ? 1e-3 : 2e-3;
+      const Eigen::Matrix3d r = Eigen::AngleAxisd(phi, axis).toRotationMatrix();
+      local_input<triangle_plate> in;
+      for (std::size_t i = 0; i < 3; ++i)
+        in.u.segment<3>(static_cast<int>(3 * i)) = (r - Eigen::Matrix3d::Identity()) * (p[i] - p[0]);
+      for (std::size_t k = 0; k < 3; ++k) {
+        const spatial::vec3 t = (p[(k + 1) % 3] - p[k]).normalized();
+        in.u(static_cast<int>(9 + k)) = sg[k] * phi * axis.dot(t);
+      }
+      fn[static_cast<std::size_t>(j)] = flows(in).f.norm();
+      // first order: the flows are far below K times the displacements
+      CHECK(fn[static_cast<std::size_t>(j)] < 1e-2 * lt.K.norm() * in.u.norm());
+    }
+    MESSAGE("rigid rotation: |f| = ", fn[0], " at 1e-3 rad, ", fn[1], " at 2e-3 rad (ratio ", fn[1] / fn[0],
+            ", quadratic: 4)");
+    CHECK(fn[1] / fn[0] == doctest::Approx(4).epsilon(1e-3));
+    CHECK(g.area > 0);
+  }
+
+  TEST_CASE("square plates under uniform pressure: centre deflection converges to Timoshenko's tables 8 and 35") {
+    // Timoshenko & Woinowsky-Krieger, table 8 (simply supported, nu = 0.3): w = 0.00406 q a^4 / D, to more
+    // digits 0.00406235 (the Navier series, eq. 137 there, summed to convergence); table 35 (clamped):
+    // w = 0.00126 q a^4 / D, to more digits 0.00126532 (the value of the series solutions quoted e.g. by
+    // Taylor and Govindjee, Int. J. Numer. Meth. Eng. 2004). The tolerances compare with the tables' 3 digits.
+    for (const bool clamped : {false, true}) {
+      const double exact = clamped ? 0.00126532 : 0.00406235;
+      std::array<double, 3> err{};
+      const std::array<int, 3> ns{8, 16, 32};
+      for (std::size_t i = 0; i < 3; ++i) err[i] = centre_deflection(ns[i], clamped) / exact - 1;
+      MESSAGE((clamped ? std::string("clamped") : std::string("simply supported")), ": centre deflection errors 8x8 ", err[0], ", 16x16 ",
+              err[1], ", 32x32 ", err[2], "; ratios ", err[0] / err[1], ", ", err[1] / err[2]);
+      // Second-order convergence (Morley: the deflection error is O(h^2)): the error falls about 4x per halving,
+      // and the Richardson extrapolation w32 + (w32 - w16) / 3 removes the h^2 term.
+      const double extrapolated = err[2] + (err[2] - err[1]) / 3;
+      MESSAGE("  Richardson-extrapolated error ", extrapolated);
+      CHECK(std::abs(err[1] / err[2]) > 3.5);
+      CHECK(std::abs(err[1] / err[2]) < 4.5);
+      CHECK(std::abs(err[0] / err[1]) > 3.5);
+      CHECK(std::abs(extrapolated) < 1e-3);
+      CHECK(std::abs(err[2]) < 0.025);
+    }
+  }
+
+  TEST_CASE("square plates: first natural frequency converges to Navier (simply supported) and Leissa (clamped)") {
+    for (const bool clamped : {false, true}) {
+      const double exact = clamped ? 35.985 : 2 * pi * pi;
+      std::array<double, 3> err{};
+      const std::array<int, 3> ns{8, 16, 32};
+      for (std::size_t i = 0; i < 3; ++i) err[i] = first_frequency(ns[i], clamped) / exact - 1;
+      const double extrapolated = err[2] + (err[2] - err[1]) / 3;
+      MESSAGE((clamped ? std::string("clamped") : std::string("simply supported")), ": first frequency errors 8x8 ", err[0], ", 16x16 ", err[1],
+              ", 32x32 ", err[2], "; ratios ", err[0] / err[1], ", ", err[1] / err[2], "; Richardson-extrapolated ",
+              extrapolated);
+      CHECK(err[2] < 0);  // lumped mass and a soft element: from below
+      CHECK(std::abs(err[1] / err[2]) > 3.5);
+      CHECK(std::abs(err[1] / err[2]) < 4.5);
+      CHECK(std::abs(extrapolated) < 2e-3);
+    }
+  }
+}
