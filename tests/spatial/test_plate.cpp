@@ -270,6 +270,64 @@ TEST_SUITE("spatial/plate") {
     CHECK(g.area > 0);
   }
 
+  TEST_CASE("a folded mesh: an infinitesimal rigid rotation gives zero flows in every triangle (shared side DOFs)") {
+    // A 3 x 2 strip folded by 60 degrees along x = 1, its last cells skewed: the side DOF
+    // is a rotation about the side line in space, so one value serves both triangles of a side, also
+    // across a fold. A rigid rotation omega: d_i = omega x P_i, side DOF = omega . (unit axis from the
+    // lower to the higher vertex number); every element's flows vanish to round-off.
+    plate_mesh mesh = rectangular_plate_mesh(3, 1, 3, 2);
+    for (auto& v : mesh.vertices) {
+      const double x = v.x();
+      if (x > 1) v = spatial::vec3(1 + (x - 1) * std::cos(pi / 3), v.y(), (x - 1) * std::sin(pi / 3));
+      if (x > 2) v.y() += 0.2 * (x - 2);  // skewed last cells
+    }
+    const plate_sides sd = find_plate_sides(mesh);
+    plate_model m;
+    const plate_dofs pd = add_plate_mesh(m, mesh, sd, {1e5, 0.25, 0.05, 10, 0});
+    const spatial::vec3 omega(0.3e-3, -0.7e-3, 0.4e-3);
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(m.dof_count() - 1);
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+      const spatial::vec3 d = omega.cross(mesh.vertices[i]);
+      for (std::size_t c = 0; c < 3; ++c) u(pd.vertex[i][c].index - 1) = d(static_cast<int>(c));
+    }
+    for (std::size_t k = 0; k < sd.sides.size(); ++k) {
+      const spatial::vec3 t = (mesh.vertices[static_cast<std::size_t>(sd.sides[k][1])] -
+                               mesh.vertices[static_cast<std::size_t>(sd.sides[k][0])]).normalized();
+      u(pd.side[k].index - 1) = omega.dot(t);
+    }
+    double worst = 0;
+    for (const auto& inst : m.instances<triangle_plate>()) {
+      local_input<triangle_plate> in;
+      for (int r = 0; r < 12; ++r) in.u(r) = u(inst.dofs[static_cast<std::size_t>(r)] - 1);
+      local_output<triangle_plate> lo;
+      std::array<double, 6> w{};
+      element_context ctx("TRIPL", inst.name);
+      ctx.work = w;
+      inst.element.evaluate(in, lo, ctx);
+      worst = std::max(worst, lo.f.norm() / (lo.K.norm() * in.u.norm()));
+    }
+    MESSAGE("folded mesh, rigid rotation: worst |f| / (|K| |u|) over the triangles ", worst);
+    CHECK(worst < 1e-13);
+    // The same with one side DOF given the opposite sign: the triangles at that side bend. Bending
+    // stiffness is h^2 / 12 = 2e-4 of the membrane stiffness that dominates |K|, so the measure is of
+    // that order instead of round-off.
+    u(pd.side[5].index - 1) = -u(pd.side[5].index - 1);
+    REQUIRE(u(pd.side[5].index - 1) != 0.0);
+    double strained = 0;
+    for (const auto& inst : m.instances<triangle_plate>()) {
+      local_input<triangle_plate> in;
+      for (int r = 0; r < 12; ++r) in.u(r) = u(inst.dofs[static_cast<std::size_t>(r)] - 1);
+      local_output<triangle_plate> lo;
+      std::array<double, 6> w{};
+      element_context ctx("TRIPL", inst.name);
+      ctx.work = w;
+      inst.element.evaluate(in, lo, ctx);
+      strained = std::max(strained, lo.f.norm() / (lo.K.norm() * in.u.norm()));
+    }
+    MESSAGE("  with one side DOF of the wrong sign: ", strained);
+    CHECK(strained > 1e-6);
+  }
+
   TEST_CASE("square plates under uniform pressure: centre deflection converges to Timoshenko's tables 8 and 35") {
     // Timoshenko & Woinowsky-Krieger, table 8 (simply supported, nu = 0.3): w = 0.00406 q a^4 / D, to more
     // digits 0.00406235 (the Navier series, eq. 137 there, summed to convergence); table 35 (clamped):
