@@ -425,6 +425,50 @@ TEST_SUITE("spatial/plate") {
     CHECK(peak_w < 2.05 * w_static);
   }
 
+  TEST_CASE("a side rotation coupled to a spatial rotational node through SHC3 (shaft coupling about the side axis)") {
+    // The strip of examples/models/plate_strip.prd (L = 1 m by b = 0.5 m, two triangles, supported against
+    // rigid motion only), its end side x = L (axis +Y, from vertex 1 to 3) coupled by SHC3 (axis +Y, stiffness
+    // kc) to a spatial rotational node, which RSD3 (kr) holds to the ground and M3 loads with the moment P about
+    // +Y. The plate alone is a rotational spring kp = b D (1 - nu^2) / L on its end side (pure bending, exact for
+    // Morley), so the node turns by psi = P / (kr + kc kp / (kc + kp)) and the side by theta = kc psi / (kc + kp);
+    // SHC3 and RSD3 are exact for a rotation about a fixed axis at any angle.
+    using coupled_model = model<triangle_plate, shaft_coupling, rotational_spring_damper, spatial_torque>;
+    coupled_model m;
+    const double e = 2.1e11, nu = 0.3, h = 0.01, l = 1, b = 0.5, p = 10, kc = 1e6, kr = 1e3;
+    const plate_mesh mesh = rectangular_plate_mesh(l, b, 1, 1);  // vertices 0 (0, 0), 1 (L, 0), 2 (0, b), 3 (L, b)
+    const plate_sides sd = find_plate_sides(mesh);
+    plate_fixity fix;
+    fix.vertex = {{true, true, true}, {false, true, false}, {false, false, false}, {false, false, false}};
+    fix.side.assign(sd.sides.size(), false);
+    int end_side = -1;
+    for (std::size_t k = 0; k < sd.sides.size(); ++k) {
+      const auto [a0, a1] = sd.sides[k];
+      if ((a0 == 0 && a1 == 1) || (a0 == 0 && a1 == 2)) fix.side[k] = true;  // slopes at y = 0 and x = 0
+      if (a0 == 1 && a1 == 3) end_side = static_cast<int>(k);
+    }
+    REQUIRE(end_side >= 0);
+    const plate_dofs pd = add_plate_mesh(m, mesh, sd, {e, nu, h, 0, 0}, fix);
+    const rotation_node node = m.add_rotation_node("node");
+    const rotation_node fixed = m.add_rotation_node("fixed", m.ground(), m.ground(), m.ground());
+    m.add<shaft_coupling>("coupling", {0, 1, 0, kc, 0, 0}, pd.side[static_cast<std::size_t>(end_side)], node);
+    m.add<rotational_spring_damper>("holder", {kr, 0}, fixed, node);
+    m.add<spatial_torque>("moment", {0, p, 0, 0, 0, 0, 0, 0}, node);
+    simulation sim(m);
+    sim.run({.end = 1.0, .smax = 0.5, .newton = pradis_element_tests::tight_newton});
+    const double d = e * h * h * h / (12 * (1 - nu * nu)), kp = b * d * (1 - nu * nu) / l;
+    const double psi = p / (kr + kc * kp / (kc + kp)), theta = kc * psi / (kc + kp);
+    const spatial::quaternion q = spatial::node_quaternion(sim, node);
+    const double psi_sim = 2 * std::atan2(q(1), q(3));  // rotation about +Y
+    const double theta_sim = sim.u(pd.side[static_cast<std::size_t>(end_side)]);
+    // The strip's end deflection w = a L^2 / 2 with a = -theta / L (theta = -dw/dx at x = L).
+    const double w_sim = sim.u(pd.vertex[1][2]);
+    MESSAGE("SHC3 coupling: node ", psi_sim, " rad (exact ", psi, "), side ", theta_sim, " rad (exact ", theta,
+            "), end deflection ", w_sim, " m (exact ", -theta * l / 2, ")");
+    CHECK(std::abs(psi_sim / psi - 1) < 1e-8);
+    CHECK(std::abs(theta_sim / theta - 1) < 1e-8);
+    CHECK(std::abs(w_sim / (-theta * l / 2) - 1) < 1e-8);
+  }
+
   TEST_CASE("TRIPL refuses bad parameters (100) and a wrong count (101); the mesh helper a bad mesh (110)") {
     const triangle_plate::parameters ok = triangle_plate::example();
     auto run = [](triangle_plate::parameters p) {
