@@ -8,6 +8,7 @@
 #include "pradis/core/error.hpp"
 #include "pradis/core/passport.hpp"
 #include "pradis/elements/library.hpp"
+#include "pradis/elements/spatial/plate_mesh.hpp"
 #include "pradis/integrators/bdf/bdf_simulation.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/simulation.hpp"

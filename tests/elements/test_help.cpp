@@ -48,6 +48,7 @@ constexpr std::string_view code100_situation(std::string_view name) {
   if (name == "TDAMPER") return "the velocities do not increase strictly";
   if (name == "SHC3") return "the axis is zero, k <= 0, c < 0";
   if (name == "BEAM3" || name == "BEAMI3") return "coincide";
+  if (name == "TRIPL") return "do not span a triangle";
   if (name == "HVOL") return "V, B, pa or n is not positive";
   if (name == "HORL") return "R is not positive";
   if (name == "HORT") return "Cd, A, rho or dpt is not positive";
@@ -99,7 +100,7 @@ void check_all_special(pradis::type_list<Es...>) {
 
 TEST_SUITE("elements/help") {
   TEST_CASE("the help text of every library element names its code-100 situations (and 90 / 75 where they apply)") {
-    static_assert(pradis::elements::library_elements::size == 77);
+    static_assert(pradis::elements::library_elements::size == 78);
     check_all_special(pradis::elements::library_elements{});
   }
 }

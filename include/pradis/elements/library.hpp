@@ -41,6 +41,7 @@
 #include "pradis/elements/spatial/beam_inertia.hpp"
 #include "pradis/elements/spatial/coupling.hpp"
 #include "pradis/elements/spatial/initial_rotation.hpp"
+#include "pradis/elements/spatial/plate.hpp"
 #include "pradis/elements/spatial/loads.hpp"
 #include "pradis/elements/spatial/rigid_body.hpp"
 #include "pradis/model/model.hpp"
@@ -77,6 +78,8 @@ using spatial_connector_elements =
 using spatial_contact_elements = type_list<sphere_plane_contact, sphere_sphere_contact>;
 /// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md).
 using beam_elements = type_list<elastic_beam, beam_inertia>;
+/// Plates: the 12-DOF triangle plate with side rotations (docs/plates.md).
+using plate_elements = type_list<triangle_plate>;
 /// Hydraulics (docs/domains.md): pressure is the velocity-level unknown, volume flow the flow.
 using hydraulic_elements =
     type_list<hydraulic_volume, laminar_orifice, turbulent_orifice, hydraulic_line, hydraulic_pump, hydraulic_motor,
@@ -91,7 +94,7 @@ using pneumatic_elements = type_list<gas_chamber, gas_piston_chamber, pneumatic_
                                      pneumatic_pressure_source, pneumatic_flow_source>;
 /// Every element type of the built-in library.
 using library_elements = concat_t<mech1d_elements, planar_elements, spatial_elements, spatial_connector_elements,
-                                  spatial_contact_elements, beam_elements, hydraulic_elements, electric_elements, pneumatic_elements>;
+                                  spatial_contact_elements, beam_elements, plate_elements, hydraulic_elements, electric_elements, pneumatic_elements>;
 
 }  // namespace pradis::elements
 
