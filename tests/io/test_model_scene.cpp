@@ -14,6 +14,7 @@
 
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "pradis/elements/spatial/plate_mesh.hpp"
 #include "pradis/io/model_scene.hpp"
 
 using namespace pradis;
@@ -106,5 +107,42 @@ TEST_SUITE("io/vtk") {
       CHECK(std::string(e.message()).find("3 point motions") != std::string::npos);
     }
     std::filesystem::remove_all(std::filesystem::temp_directory_path() / "pradis_scene_test");
+  }
+
+  TEST_CASE("model_scene: a plate mesh draws one triangle per TRIPL on shared vertices that move with their DOFs") {
+    // A 4 x 2 mesh (15 vertices, 16 triangles), simply supported, under a sudden
+    // pressure: every triangle is a cell, every vertex one point (shared by up to
+    // six triangles), at x0 + u of its three DOFs.
+    model<triangle_plate> m;
+    const plate_mesh mesh = rectangular_plate_mesh(2.0, 1.0, 4, 2);
+    const plate_sides sides = find_plate_sides(mesh);
+    const plate_dofs d = add_plate_mesh(m, mesh, sides, {2e9, 0.3, 0.01, 1000, 5e3}, {});
+    const io::vtk_scene scene = io::model_scene(m);
+    CHECK(scene.points() == 15);
+    CHECK(scene.cells() == 16);
+    for (int t : scene.types()) CHECK(t == io::vtk_scene::triangle_cell);
+    // The same mesh simply supported: the three interior vertices move.
+    model<triangle_plate, initial_displacement> held;
+    const plate_dofs h = add_plate_mesh(held, mesh, sides, {2e9, 0.3, 0.01, 1000, 5e3},
+                                        boundary_fixity(mesh, sides, false));
+    const io::vtk_scene hs = io::model_scene(held);
+    REQUIRE(hs.points() == 15);
+    simulation<decltype(held), alpha_family> sim(held, alpha_family(newmark{}));
+    (void)sim.run({.end = 2e-3, .smax = 1e-4});
+    std::size_t matched = 0, moved = 0;
+    for (std::size_t i = 0; i < hs.points(); ++i) {
+      const vec3 p = hs.motion(sim, i).position;
+      for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+        const auto& x = h.vertex[v];
+        const vec3 u(sim.u(x[0]), sim.u(x[1]), sim.u(x[2]));
+        if ((p - (mesh.vertices[v] + u)).norm() <= 1e-15 && (p - mesh.vertices[v]).norm() < 1e-2) {
+          ++matched;
+          if (u.norm() > 1e-7) ++moved;
+        }
+      }
+    }
+    CHECK(matched == 15);  // each drawn point is exactly one vertex moved by its DOFs
+    CHECK(moved == 3);     // the interior ones
+    (void)d;
   }
 }

@@ -111,6 +111,11 @@ struct triangle_plate {
   double rigidity() const { return p.e * p.h * p.h * p.h / (12 * (1 - p.nu * p.nu)); }
 
   /// NEWINT: parameter checks (code 100).
+  /// Animation geometry (io/model_scene.hpp): the triangle on its three vertices.
+  template <class Drawer>
+  void draw(Drawer& d) const {
+    d.triangle(d.point({p.x1, p.y1, p.z1}, 0), d.point({p.x2, p.y2, p.z2}, 3), d.point({p.x3, p.y3, p.z3}, 6));
+  }
   void new_integration(element_context& ctx) const {
     for (double x : {p.e, p.nu, p.h, p.rho, p.x1, p.y1, p.z1, p.x2, p.y2, p.z2, p.x3, p.y3, p.z3, p.s12, p.s23, p.s31,
                      p.pressure})
