@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "element_test_support.hpp"
+#include "pradis/elements/electric/passive.hpp"
 #include "pradis/elements/spatial/crank_throw.hpp"
 
 using namespace pradis;
@@ -74,6 +75,16 @@ struct x0_spec {
 };
 using x0_pair = composite<x0_spec, part<initial_displacement, 0>,
                           part<initial_displacement, 0>>;
+
+/// An RC series branch: resistor from end 1 to the inner node, capacitor to
+/// end 2.
+struct rc_spec {
+  static constexpr std::string_view name = "RCS";
+  static constexpr std::string_view title = "resistor and capacitor in series";
+  static constexpr int ext = 2, ent = 1;
+};
+using rc_series =
+    composite<rc_spec, part<resistor, 0, 2>, part<capacitor, 2, 1>>;
 
 /// A context with its own work and state vectors for an element of type E.
 template <class E> struct own_context {
@@ -451,14 +462,16 @@ TEST_SUITE("elements/composite") {
     const std::vector<dof> d{G,     G,     G,     G,     G,     G,
                              xb[0], xb[1], xb[2], rb.q1, rb.q2, rb.q3};
     std::vector<double> flat;
-    const auto put = [&](const auto& p) {
-      if constexpr (std::is_same_v<std::remove_cvref_t<decltype(p)>, elastic_beam::parameters>)
+    const auto put = [&](const auto &p) {
+      if constexpr (std::is_same_v<std::remove_cvref_t<decltype(p)>,
+                                   elastic_beam::parameters>)
         flat.insert(flat.end(), {p.e, p.g, p.a, p.iy, p.iz, p.j});
       else
         flat.insert(flat.end(), {p.rho, p.a, p.iy, p.iz, p.ip});
-      flat.insert(flat.end(), {p.xa, p.ya, p.za, p.xb, p.yb, p.zb, p.vx, p.vy, p.vz});
+      flat.insert(flat.end(),
+                  {p.xa, p.ya, p.za, p.xb, p.yb, p.zb, p.vx, p.vy, p.vz});
     };
-    std::apply([&](const auto&... p) { (put(p), ...); }, crank_throw_parts());
+    std::apply([&](const auto &...p) { (put(p), ...); }, crank_throw_parts());
     REQUIRE(flat.size() == 116);
     const std::vector<double> short_list(flat.begin(), flat.end() - 1);
     check_error(pradis_element_tests::flat_add_error<crank_throw>(m, "short", d,

@@ -18,6 +18,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "pradis/core/domain.hpp"
 #include "pradis/core/element.hpp"
 #include "pradis/elements/composite_detail.hpp"
 
@@ -92,6 +93,17 @@ public:
                                              .wrk = sums_.wrk + 1 + part_count,
                                              .adr = adr_ign_[0],
                                              .ign = adr_ign_[1]};
+  /// The physical domain of each local DOF, as the parts declare it.
+  static constexpr auto domains = [] {
+    constexpr composite_detail::domain_table t =
+        composite_detail::domain_table_of<Ps...>();
+    static_assert(!t.conflict, "pradis: two parts of a composite declare "
+                               "different physical domains on one DOF");
+    std::array<domain, static_cast<std::size_t>(Spec::ext + Spec::ent)> a{};
+    for (std::size_t i = 0; i < a.size(); ++i)
+      a[i] = t.dom[i];
+    return a;
+  }();
   /// The parts' rotational nodes in the composite's local DOFs.
   static constexpr auto rotation_nodes = [] {
     std::array<rotation_slot, static_cast<std::size_t>(rot_.count)> a{};

@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "pradis/core/domain.hpp"
 #include "pradis/core/element.hpp"
 
 namespace pradis {
@@ -154,6 +155,33 @@ template <class... Ps> constexpr rotation_table rotation_table_of() {
           }
           if (!seen && t.count < 128)
             t.slots[static_cast<std::size_t>(t.count++)] = m;
+        }
+      }(),
+      ...);
+  return t;
+}
+
+/// The physical domain of every composite DOF: the one the parts declare on it
+/// (core/domain.hpp), unspecified if none does; `conflict` if two parts
+/// disagree.
+struct domain_table {
+  std::array<domain, 512> dom{};
+  bool conflict = false;
+};
+
+template <class... Ps> constexpr domain_table domain_table_of() {
+  domain_table t;
+  (
+      [&] {
+        for (std::size_t k = 0; k < Ps::map.size(); ++k) {
+          const domain d =
+              declared_domain<typename Ps::element>(static_cast<int>(k));
+          auto &have = t.dom[static_cast<std::size_t>(Ps::map[k])];
+          if (d == domain::unspecified)
+            continue;
+          if (have != domain::unspecified && have != d)
+            t.conflict = true;
+          have = d;
         }
       }(),
       ...);

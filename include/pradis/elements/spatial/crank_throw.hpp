@@ -73,7 +73,8 @@ struct crank_throw_spec {
       "front web", "front web mass", "pin front", "pin front mass",
       "pin rear",  "pin rear mass",  "rear web",  "rear web mass"};
   static constexpr std::string_view special =
-      "an error of a part (code 100 at NEWINT, 75 during the run) is reported "
+      "an error of a part (code 100 at NEWINT, code 75 during the run) is "
+      "reported "
       "with its code in the name of THROW and "
       "the instance, naming the part (and for code 100 its parameter range); "
       "the inner nodes are internal DOFs with "
