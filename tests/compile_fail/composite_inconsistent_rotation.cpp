@@ -14,15 +14,11 @@
 
 struct spec {
   static constexpr std::string_view name = "BAD";
-  static constexpr std::string_view title =
-      "two beams that disagree about a node's q4";
+  static constexpr std::string_view title = "two beams that disagree about a node's q4";
   static constexpr int ext = 18, ent = 4;
 };
 using bad =
-    pradis::composite<spec,
-                      pradis::part<pradis::elements::elastic_beam, 0, 1, 2, 3,
-                                   4, 5, 6, 7, 8, 9, 10, 11, 18, 19>,
-                      pradis::part<pradis::elements::elastic_beam, 0, 1, 2, 3,
-                                   4, 5, 12, 13, 14, 15, 16, 17, 20, 21>>;
+    pradis::composite<spec, pradis::part<pradis::elements::elastic_beam, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 18, 19>,
+                      pradis::part<pradis::elements::elastic_beam, 0, 1, 2, 3, 4, 5, 12, 13, 14, 15, 16, 17, 20, 21>>;
 
 static_assert(pradis::check_element<bad>());

@@ -13,8 +13,7 @@ struct spec {
   static constexpr std::string_view title = "two springs and a DOF nobody uses";
   static constexpr int ext = 2, ent = 2;
 };
-using bad =
-    pradis::composite<spec, pradis::part<pradis::elements::linear_spring, 0, 2>,
-                      pradis::part<pradis::elements::linear_spring, 2, 1>>;
+using bad = pradis::composite<spec, pradis::part<pradis::elements::linear_spring, 0, 2>,
+                              pradis::part<pradis::elements::linear_spring, 2, 1>>;
 
 static_assert(pradis::check_element<bad>());
