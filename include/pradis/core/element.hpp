@@ -54,7 +54,9 @@ struct absent_block {
 
 /// One spatial rotational node of an element: the local index of its q1 among the
 /// external DOFs (q2 and q3 follow it) and the local index of its hidden q4 among
-/// the internal DOFs (EXT <= q4 < EXT + ENT). An element with rotational nodes
+/// the internal DOFs (EXT <= q4 < EXT + ENT). A super-element (elements/composite.hpp)
+/// may also declare inner nodes whose q1..q3 are internal DOFs placed before their q4:
+/// the model then creates a private rotational node for them (q4 at 1, norm equation). An element with rotational nodes
 /// declares `static constexpr std::array<pradis::rotation_slot, K> rotation_nodes`;
 /// the model then connects the internal slot q4 to the hidden fourth potential of
 /// the node whose q1, q2, q3 the element is connected to, shared by every element
@@ -86,11 +88,16 @@ constexpr auto rotation_slots_of() {
 template <std::size_t K>
 constexpr const char* rotation_slots_problem(const std::array<rotation_slot, K>& r, int ext, int ent) noexcept {
   for (std::size_t i = 0; i < K; ++i) {
-    if (r[i].q1 < 0 || r[i].q1 + 2 >= ext) return "a rotational node's q1..q3 must be external DOFs (q1 + 2 < EXT)";
     if (r[i].q4 < ext || r[i].q4 >= ext + ent) return "a rotational node's q4 must be an internal DOF (EXT <= q4 < EXT + ENT)";
-    for (std::size_t j = 0; j < i; ++j) {
-      if (r[i].q4 == r[j].q4) return "two rotational nodes share the same q4 slot";
-      if (r[i].q1 < r[j].q1 + 3 && r[j].q1 < r[i].q1 + 3) return "two rotational nodes overlap in their q1..q3 slots";
+    const bool external = r[i].q1 >= 0 && r[i].q1 + 2 < ext;
+    const bool inner = r[i].q1 >= ext && r[i].q1 + 2 < r[i].q4;
+    if (!external && !inner)
+      return "a rotational node's q1..q3 must be external DOFs (q1 + 2 < EXT), or internal DOFs before its q4 (an "
+             "inner node of a super-element)";
+    for (std::size_t j = 0; j < K; ++j) {
+      if (j < i && r[i].q4 == r[j].q4) return "two rotational nodes share the same q4 slot";
+      if (j < i && r[i].q1 < r[j].q1 + 3 && r[j].q1 < r[i].q1 + 3) return "two rotational nodes overlap in their q1..q3 slots";
+      if (r[j].q4 >= r[i].q1 && r[j].q4 < r[i].q1 + 3) return "a rotational node's q4 slot lies among another node's q1..q3";
     }
   }
   return nullptr;
@@ -345,7 +352,8 @@ consteval bool check_element() {
     static_assert(!(p.adr == 3 && p.ign != 0), "pradis: passport ADR=3 allows IGN=0 only");
     if constexpr (HasRotationNodes<E>)
       static_assert(rotation_slots_problem(E::rotation_nodes, p.ext, p.ent) == nullptr,
-                    "pradis: invalid rotation_nodes: q1..q3 must be external DOFs, q4 an internal DOF, no overlaps");
+                    "pradis: invalid rotation_nodes: q1..q3 must be external DOFs (or internal ones before q4), q4 an internal "
+                    "DOF, no overlaps");
   }
   static_assert(HasHelp<E>, "pradis: an element type needs `static constexpr pradis::element_help help = {...};`");
   static_assert(requires { typename E::parameters; },

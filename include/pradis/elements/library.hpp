@@ -40,6 +40,7 @@
 #include "pradis/elements/spatial/beam.hpp"
 #include "pradis/elements/spatial/beam_inertia.hpp"
 #include "pradis/elements/spatial/coupling.hpp"
+#include "pradis/elements/spatial/crank_throw.hpp"
 #include "pradis/elements/spatial/initial_rotation.hpp"
 #include "pradis/elements/spatial/plate.hpp"
 #include "pradis/elements/spatial/loads.hpp"
@@ -76,8 +77,9 @@ using spatial_connector_elements =
 /// Spatial contact: a body-fixed sphere against a fixed plane (with Coulomb friction) or
 /// against another sphere (docs/contact.md).
 using spatial_contact_elements = type_list<sphere_plane_contact, sphere_sphere_contact>;
-/// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md).
-using beam_elements = type_list<elastic_beam, beam_inertia>;
+/// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md), and the
+/// crank throw super-element made of them (docs/super-elements.md).
+using beam_elements = type_list<elastic_beam, beam_inertia, crank_throw>;
 /// Plates: the 12-DOF triangle plate with side rotations (docs/plates.md).
 using plate_elements = type_list<triangle_plate>;
 /// Hydraulics (docs/domains.md): pressure is the velocity-level unknown, volume flow the flow.

@@ -1,0 +1,416 @@
+// Composite super-elements (elements/composite.hpp) and the crank throw THROW. References: the PRADIS element
+// developer's manual (an element may call other elements as a sub-model, with SYSPRN = 0 muting their
+// messages); the invariant that a super-element kept without condensation is the same set of nodal equations
+// as the expanded model of its parts (docs/super-elements.md).
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "element_test_support.hpp"
+#include "pradis/elements/electric/passive.hpp"
+#include "pradis/elements/spatial/crank_throw.hpp"
+
+using namespace pradis;
+using namespace pradis::elements;
+using pradis_element_tests::check_error;
+using pradis_element_tests::error_from;
+
+namespace {
+
+using throw_t = crank_throw;
+constexpr int n_throw = element_traits<throw_t>::n;
+
+// ---- test-only parts ---------------------------------------------------------
+
+/// A spring that writes a warning to the diagnostics log at every evaluation.
+struct warning_spring {
+  static constexpr pradis::passport passport{.name = "WARNS", .ext = 2, .par = 1, .adr = 1, .ign = 23};
+  static constexpr element_help help{.title = "test spring that warns",
+                                     .name = "test",
+                                     .field = "test",
+                                     .dofs = "1 - a\n2 - b",
+                                     .parameters = "1 - k",
+                                     .work = "",
+                                     .special = "code 100 never"};
+  struct parameters {
+    double k = 1;
+  } p;
+  explicit warning_spring(parameters q) : p(q) {}
+  static warning_spring from_parameters(std::span<const double> v) { return warning_spring({v[0]}); }
+  void evaluate(const local_input<warning_spring>& in, local_output<warning_spring>& out, element_context& ctx) const {
+    ctx.warn("stretched");
+    out.f(0) = p.k * (in.u(0) - in.u(1));
+    out.f(1) = -out.f(0);
+    if (out.want_jacobian) out.K << p.k, -p.k, -p.k, p.k;
+  }
+};
+struct warn_spec {
+  static constexpr std::string_view name = "WPAIR";
+  static constexpr std::string_view title = "two warning springs in series";
+  static constexpr int ext = 2, ent = 1;
+};
+using warn_pair = composite<warn_spec, part<warning_spring, 0, 2>, part<warning_spring, 2, 1>>;
+
+/// Two initial-displacement requests on the same DOF (code 90 if they differ).
+struct x0_spec {
+  static constexpr std::string_view name = "X0X0";
+  static constexpr std::string_view title = "two initial displacements on one DOF";
+  static constexpr int ext = 1, ent = 0;
+};
+using x0_pair = composite<x0_spec, part<initial_displacement, 0>, part<initial_displacement, 0>>;
+
+/// An RC series branch: resistor from end 1 to the inner node, capacitor to end 2.
+struct rc_spec {
+  static constexpr std::string_view name = "RCS";
+  static constexpr std::string_view title = "resistor and capacitor in series";
+  static constexpr int ext = 2, ent = 1;
+};
+using rc_series = composite<rc_spec, part<resistor, 0, 2>, part<capacitor, 2, 1>>;
+
+/// A context with its own work and state vectors for an element of type E.
+template <class E>
+struct own_context {
+  std::vector<double> work = std::vector<double>(static_cast<std::size_t>(E::passport.wrk), 0.0);
+  std::vector<double> old_s = std::vector<double>(static_cast<std::size_t>(E::passport.str), 0.0);
+  std::vector<double> new_s = std::vector<double>(static_cast<std::size_t>(E::passport.str), 0.0);
+  element_context ctx;
+  own_context(std::string_view name, diagnostics* log = nullptr) : ctx(E::passport.name, name, log) {
+    ctx.work = work;
+    ctx.old_state = old_s;
+    ctx.new_state = new_s;
+    ctx.npar = E::passport.par;
+  }
+};
+
+/// Local DOFs of THROW's nodes, written out by hand (crank_throw.hpp): x, y, z, q1, q2, q3 and the hidden q4
+/// of A, N1, N2, N3, B.
+struct node_dofs {
+  int x, q1, q4;
+};
+constexpr std::array<node_dofs, 5> throw_nodes{{{0, 3, 12}, {14, 17, 20}, {21, 24, 27}, {28, 31, 34}, {6, 9, 13}}};
+/// The local DOF list of a beam from node a to node b (BEAM3's order).
+std::array<int, 14> beam_dofs(int a, int b) {
+  const auto& na = throw_nodes[static_cast<std::size_t>(a)];
+  const auto& nb = throw_nodes[static_cast<std::size_t>(b)];
+  return {na.x,     na.x + 1, na.x + 2, na.q1,     na.q1 + 1, na.q1 + 2, nb.x,
+          nb.x + 1, nb.x + 2, nb.q1,    nb.q1 + 1, nb.q1 + 2, na.q4,     nb.q4};
+}
+
+/// The expanded model: the same 4 BEAM3 + 4 BEAMI3 on explicit nodes, the DOFs created in the order THROW's
+/// placement creates them (A, B, then N1, N2, N3).
+template <class M>
+struct throw_scene {
+  M m;
+  std::vector<dof> xa, xb;
+  rotation_node ra, rb;
+};
+
+template <class M>
+void add_loads(M& m, const std::vector<dof>& xb, rotation_node rb) {
+  // A force at B across the throw and a torque about the shaft axis, both suddenly applied.
+  m.template add<spatial_force>("force", {0, -3000, 2000, 0, 0, 0, 0, 0}, xb[0], xb[1], xb[2]);
+  m.template add<spatial_torque>("torque", {40, 0, 0, 0, 0, 0, 0, 0}, rb);
+}
+
+using scene_model = model<elastic_beam, beam_inertia, crank_throw, spatial_force, spatial_torque>;
+
+/// Clamps A (translations and rotations on the ground) and creates B.
+void make_ends(scene_model& m, std::vector<dof>& xb, rotation_node& rb) {
+  xb = m.add_dofs(3, "xb");
+  rb = m.add_rotation_node("rb");
+}
+
+}  // namespace
+
+TEST_SUITE("elements/composite") {
+  TEST_CASE("the passport of THROW is derived from its parts") {
+    constexpr passport p = throw_t::passport;
+    static_assert(p.ext == 12 && p.ent == 23);
+    static_assert(p.par == 4 * 15 + 4 * 14);        // BEAM3 15, BEAMI3 14 parameters
+    static_assert(p.wrk == 4 * 3 + 4 * 1 + 1 + 8);  // the parts' work + evaluations + errors per part
+    static_assert(p.str == 0);
+    static_assert(p.adr == 1 && p.ign == 0);             // BEAMI3 brings C and M, BEAM3 K
+    static_assert(throw_t::rotation_nodes.size() == 5);  // A, N1, N2, N3, B: deduplicated
+    static_assert(throw_t::rotation_nodes[0] == rotation_slot{3, 12});
+    static_assert(throw_t::rotation_nodes[4] == rotation_slot{9, 13});
+    static_assert(throw_t::rotation_nodes[1] == rotation_slot{17, 20});  // an inner node: q1..q3 internal
+    // Inner nodes (core/element.hpp): q1..q3 internal and before their q4; no q4 among another node's q1..q3.
+    static_assert(rotation_slots_problem(std::array<rotation_slot, 1>{{{7, 10}}}, 6, 5) == nullptr);
+    static_assert(rotation_slots_problem(std::array<rotation_slot, 1>{{{8, 7}}}, 6, 5) != nullptr);
+    static_assert(rotation_slots_problem(std::array<rotation_slot, 2>{{{6, 10}, {3, 7}}}, 6, 5) != nullptr);
+    static_assert(warn_pair::passport.adr == 1 && warn_pair::passport.ign == 23);  // K only
+    CHECK(help_lines(throw_t::help.parameters) == p.par);
+    CHECK(help_lines(throw_t::help.dofs) == p.ext);
+    CHECK(help_lines(throw_t::help.work) == p.wrk);
+    const std::string pars(throw_t::help.parameters);
+    CHECK(pars.find("30 - part 3 'BEAM3' (pin front), its parameter 1: Young's modulus") != std::string::npos);
+    CHECK(pars.find("116 - part 8 'BEAMI3' (rear web mass), its parameter 14:") != std::string::npos);
+  }
+
+  TEST_CASE("THROW's flows and Jacobian are the sum of its parts' (assembled by hand) at random states") {
+    // The composite adds the parts' flows and blocks into zeroed arrays in part order; adding them here in
+    // the same order gives the same numbers bit for bit.
+    const auto pp = crank_throw_parts();
+    throw_t t(throw_t::parameters{pp});
+    own_context<throw_t> c("t");
+    t.new_integration(c.ctx);
+    const elastic_beam b1(std::get<0>(pp)), b2(std::get<2>(pp)), b3(std::get<4>(pp)), b4(std::get<6>(pp));
+    const beam_inertia i1(std::get<1>(pp)), i2(std::get<3>(pp)), i3(std::get<5>(pp)), i4(std::get<7>(pp));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> uni(-1.0, 1.0);
+    int checked = 0;
+    for (int trial = 0; trial < 50; ++trial) {
+      local_input<throw_t> in;
+      for (int k = 0; k < n_throw; ++k) {
+        in.u(k) = 1e-3 * uni(rng);
+        in.v(k) = uni(rng);
+        in.a(k) = 100 * uni(rng);
+      }
+      for (const auto& nd : throw_nodes) in.u(nd.q4) = 1.0 + 0.1 * uni(rng);  // quaternions near identity
+      if (!t.admissible(in)) continue;
+      ++checked;
+      local_output<throw_t> out;
+      t.evaluate(in, out, c.ctx);
+      Eigen::Matrix<double, n_throw, 1> f = Eigen::Matrix<double, n_throw, 1>::Zero();
+      Eigen::Matrix<double, n_throw, n_throw> K = decltype(K)::Zero(), C = decltype(C)::Zero(), M = decltype(M)::Zero();
+      const auto add = [&]<class E>(const E& e, int a, int b) {
+        const auto d = beam_dofs(a, b);
+        local_input<E> li;
+        for (int k = 0; k < 14; ++k) {
+          li.u(k) = in.u(d[static_cast<std::size_t>(k)]);
+          li.v(k) = in.v(d[static_cast<std::size_t>(k)]);
+          li.a(k) = in.a(d[static_cast<std::size_t>(k)]);
+        }
+        local_output<E> lo;
+        std::vector<double> w(static_cast<std::size_t>(E::passport.wrk));
+        element_context ec(E::passport.name, "part");
+        ec.work = w;
+        e.new_integration(ec);
+        e.evaluate(li, lo, ec);
+        for (int r = 0; r < 14; ++r) {
+          f(d[static_cast<std::size_t>(r)]) += lo.f(r);
+          for (int q = 0; q < 14; ++q) {
+            if constexpr (element_traits<E>::has_k)
+              K(d[static_cast<std::size_t>(r)], d[static_cast<std::size_t>(q)]) += lo.K(r, q);
+            if constexpr (element_traits<E>::has_c)
+              C(d[static_cast<std::size_t>(r)], d[static_cast<std::size_t>(q)]) += lo.C(r, q);
+            if constexpr (element_traits<E>::has_m)
+              M(d[static_cast<std::size_t>(r)], d[static_cast<std::size_t>(q)]) += lo.M(r, q);
+          }
+        }
+      };
+      add(b1, 0, 1), add(i1, 0, 1), add(b2, 1, 2), add(i2, 1, 2), add(b3, 2, 3), add(i3, 2, 3), add(b4, 3, 4),
+          add(i4, 3, 4);
+      CHECK((out.f - f).cwiseAbs().maxCoeff() == 0.0);
+      CHECK((out.K - K).cwiseAbs().maxCoeff() == 0.0);
+      CHECK((out.C - C).cwiseAbs().maxCoeff() == 0.0);
+      CHECK((out.M - M).cwiseAbs().maxCoeff() == 0.0);
+    }
+    CHECK(checked >= 40);
+    CHECK(c.work[static_cast<std::size_t>(throw_t::stats)] == checked);  // the evaluation count
+  }
+
+  TEST_CASE("a THROW moves as the expanded model of its BEAM3 and BEAMI3 parts, to round-off") {
+    // Same equations, same DOF numbering (the expanded model creates its DOFs in the order THROW's placement
+    // creates its internal ones), same integrator (Newmark, the default) and the same 200 steps of 1e-5 s (no
+    // step cut in either run: the Newton tolerances are tight but reachable, three iterations a step). Only
+    // the order in which the element contributions are summed differs (inside THROW the parts first, then
+    // into the model): a relative round-off of ~1e-16 per flow and matrix entry, which the Newton solves
+    // amplify by the condition of the Newton matrix (stiffness ~1e10 N/m against masses of ~0.1 kg at h =
+    // 1e-5 s: ~1e4) and 200 steps accumulate. The tolerance is that round-off floor measured on the problem
+    // itself: the expanded model with its elements placed in reverse order (a different summation order,
+    // nothing else) differs from the forward one by 5e-12 of the largest motion; THROW must differ by no more
+    // than twice that (measured: 4e-12), and the hidden q4 (near 1) by round-off relative to 1.
+    const auto pp = crank_throw_parts();
+    enum { expanded, reversed, as_throw };
+    const auto run = [&](int mode) {
+      scene_model m;
+      const dof G = m.ground();
+      std::vector<dof> xb;
+      rotation_node rb;
+      make_ends(m, xb, rb);
+      const rotation_node ga = m.add_rotation_node("ra", G, G, G);
+      (void)ga;
+      if (mode == as_throw) {
+        m.add<crank_throw>("throw", {pp}, G, G, G, G, G, G, xb[0], xb[1], xb[2], rb);
+      } else {
+        std::array<std::vector<dof>, 3> xi;
+        std::array<rotation_node, 3> ri;
+        for (std::size_t i = 0; i < 3; ++i) {
+          xi[i] = m.add_dofs(3, "n" + std::to_string(i + 1));
+          ri[i] = m.add_rotation_node("rn" + std::to_string(i + 1));
+        }
+        // The beams A -> N1 -> N2 -> N3 -> B; `reversed` places them from B's end.
+        const std::array<std::array<dof, 6>, 5> nd{{{G, G, G, G, G, G},
+                                                    {xi[0][0], xi[0][1], xi[0][2], ri[0].q1, ri[0].q2, ri[0].q3},
+                                                    {xi[1][0], xi[1][1], xi[1][2], ri[1].q1, ri[1].q2, ri[1].q3},
+                                                    {xi[2][0], xi[2][1], xi[2][2], ri[2].q1, ri[2].q2, ri[2].q3},
+                                                    {xb[0], xb[1], xb[2], rb.q1, rb.q2, rb.q3}}};
+        const auto beams = [&]<std::size_t I>(std::integral_constant<std::size_t, I>) {
+          constexpr std::size_t k = I / 2;
+          const auto& a = nd[k];
+          const auto& b = nd[k + 1];
+          using E = std::conditional_t<I % 2 == 0, elastic_beam, beam_inertia>;
+          m.add<E>("part" + std::to_string(I + 1), std::get<I>(pp), a[0], a[1], a[2], a[3], a[4], a[5], b[0], b[1],
+                   b[2], b[3], b[4], b[5]);
+        };
+        if (mode == expanded) [&]<std::size_t... I>(std::index_sequence<I...>) {
+            (beams(std::integral_constant<std::size_t, I>{}), ...);
+          }
+        (std::make_index_sequence<8>{});
+        else[&]<std::size_t... I>(std::index_sequence<I...>) {
+          (beams(std::integral_constant<std::size_t, 7 - I>{}), ...);
+        }
+        (std::make_index_sequence<8>{});
+      }
+      add_loads(m, xb, rb);
+      simulation sim(m);
+      const auto st = sim.run(
+          {.end = 2e-3, .smax = 1e-5, .newton = {.dabsu = 1e-9, .drltu = 0, .dabsi = 1e-5, .drlti = 0, .itr = 10}});
+      CHECK(st.steps == 200);
+      CHECK(st.rejected_steps == 0);
+      std::vector<double> u;
+      std::vector<char> q4;  // the hidden q4 (near 1: not a motion)
+      for (int d = 0; d < m.dof_count(); ++d) {
+        u.push_back(sim.state().u(d));
+        q4.push_back(m.dof_name(d).ends_with(".q4") || m.dof_name(d).starts_with("rotation node"));
+      }
+      return std::make_tuple(u, q4, m.dof_count());
+    };
+    const auto [ue, qe, ne] = run(expanded);
+    const auto [ur, qr, nr] = run(reversed);
+    const auto [uc, qc, nc] = run(as_throw);
+    REQUIRE(ne == nc);
+    REQUIRE(nr == nc);
+    CHECK(qe == qc);  // the same DOFs in the same order
+    double umax = 0, dthrow = 0, dreversed = 0, dq4 = 0;
+    for (std::size_t d = 0; d < ue.size(); ++d) {
+      if (qe[d]) {
+        dq4 = std::max(dq4, std::abs(ue[d] - uc[d]));
+        continue;
+      }
+      umax = std::max(umax, std::abs(ue[d]));
+      dthrow = std::max(dthrow, std::abs(ue[d] - uc[d]));
+      dreversed = std::max(dreversed, std::abs(ue[d] - ur[d]));
+    }
+    INFO("max |u| = ", umax, ", difference THROW - expanded ", dthrow, ", reversed - expanded ", dreversed,
+         ", on the hidden q4 ", dq4);
+    CHECK(umax > 1e-5);  // the throw did move
+    // Round-off, and no more than a mere reordering of the expanded model's sums gives.
+    CHECK(dreversed > 0);
+    CHECK(dthrow <= 2 * dreversed);
+    CHECK(dthrow <= 1e-10 * umax);
+    CHECK(dq4 <= 1e-12);  // q4 stays near 1: round-off relative to 1
+  }
+
+  TEST_CASE("a part's error names the super-element, its instance and the part, with the part's code") {
+    std::ostringstream log_text;
+    diagnostics log;
+    log.to(log_text);
+    SUBCASE("code 100 at NEWINT: the part and its parameter range") {
+      auto pp = crank_throw_parts();
+      std::get<2>(pp).e = -1.0;  // part 3, BEAM3 (pin front): Young's modulus
+      throw_t t(throw_t::parameters{pp});
+      own_context<throw_t> c("Throw 1", &log);
+      const auto e = error_from([&] { t.new_integration(c.ctx); });
+      check_error(e, error_code::invalid_parameter, "THROW", "Throw 1",
+                  "part 3 'BEAM3' (pin front), parameters 30..44 of THROW: Young's modulus E = -1 must be > 0");
+      // One line in the log, in THROW's name: the part's own report was muted.
+      CHECK(log_text.str() == std::string(e->what()) + "\n");
+    }
+    SUBCASE("code 75 during the run: the part, the count in the work vector") {
+      throw_t t(throw_t::example());
+      own_context<throw_t> c("Throw 1", &log);
+      t.new_integration(c.ctx);
+      local_input<throw_t> in;
+      for (const auto& nd : throw_nodes) in.u(nd.q4) = 1.0;
+      in.u(27) = 0.0;  // N2's quaternion vanishes: the pin's first piece (part
+                       // 3) fails first
+      const auto e = error_from([&] {
+        local_output<throw_t> out;
+        t.evaluate(in, out, c.ctx);
+      });
+      check_error(e, error_code::singular_situation, "THROW", "Throw 1", "part 3 'BEAM3' (pin front): Lq near zero");
+      CHECK(e->message().find("parameters") == std::string::npos);
+      CHECK(c.work[static_cast<std::size_t>(throw_t::stats + 1 + 2)] == 1.0);  // part 3's error count
+      CHECK(c.work[static_cast<std::size_t>(throw_t::stats + 1 + 0)] == 0.0);
+      CHECK(log_text.str() == std::string(e->what()) + "\n");
+    }
+  }
+
+  TEST_CASE("a part's warnings do not reach the log inside the composite (SYSPRN = 0)") {
+    std::ostringstream log_text;
+    diagnostics log;
+    log.to(log_text);
+    local_input<warn_pair> in;
+    in.u << 0.1, -0.2, 0.3;
+    warn_pair w({{warning_spring::parameters{2.0}, warning_spring::parameters{3.0}}});
+    own_context<warn_pair> c("pair", &log);
+    local_output<warn_pair> out;
+    w.evaluate(in, out, c.ctx);
+    CHECK(log_text.str().empty());
+    CHECK_FALSE(c.ctx.muted());  // the guard is released
+    // Flows of two springs in series through the internal DOF 3 (k1 (u1 - u3), k2 (u3 - u2)).
+    CHECK(out.f(0) == doctest::Approx(2.0 * (0.1 - 0.3)));
+    CHECK(out.f(1) == doctest::Approx(-3.0 * (0.3 + 0.2)));
+    CHECK(out.f(2) == doctest::Approx(-2.0 * (0.1 - 0.3) + 3.0 * (0.3 + 0.2)));
+    // The same part evaluated on its own does write its warning.
+    own_context<warning_spring> c1("alone", &log);
+    local_output<warning_spring> o1;
+    local_input<warning_spring> i1;
+    warning_spring({2.0}).evaluate(i1, o1, c1.ctx);
+    CHECK(log_text.str() == "WARNS 'alone': stretched\n");
+  }
+
+  TEST_CASE("initial values of the parts are merged; different requests for one DOF are code 90") {
+    own_context<x0_pair> c("x0s");
+    SUBCASE("the same value twice") {
+      x0_pair x({{initial_displacement::parameters{0.5}, initial_displacement::parameters{0.5}}});
+      initial_values<1> iv;
+      x.zero_step(iv, c.ctx);
+      CHECK(iv.has_displacement(0));
+      CHECK(iv.displacement(0) == 0.5);
+    }
+    SUBCASE("two values") {
+      x0_pair x({{initial_displacement::parameters{0.5}, initial_displacement::parameters{0.7}}});
+      initial_values<1> iv;
+      check_error(error_from([&] { x.zero_step(iv, c.ctx); }), error_code::conflicting_initial, "X0X0", "x0s",
+                  "part 2 'X0' requests an initial displacement of local DOF 1 "
+                  "different from the one part 1 requested");
+    }
+  }
+
+  TEST_CASE("THROW from the flat parameter vector: a wrong count is code 101, a bad value code 100 naming the part") {
+    scene_model m;
+    const dof G = m.ground();
+    std::vector<dof> xb;
+    rotation_node rb;
+    make_ends(m, xb, rb);
+    const std::vector<dof> d{G, G, G, G, G, G, xb[0], xb[1], xb[2], rb.q1, rb.q2, rb.q3};
+    std::vector<double> flat;
+    const auto put = [&](const auto& p) {
+      if constexpr (std::is_same_v<std::remove_cvref_t<decltype(p)>, elastic_beam::parameters>)
+        flat.insert(flat.end(), {p.e, p.g, p.a, p.iy, p.iz, p.j});
+      else
+        flat.insert(flat.end(), {p.rho, p.a, p.iy, p.iz, p.ip});
+      flat.insert(flat.end(), {p.xa, p.ya, p.za, p.xb, p.yb, p.zb, p.vx, p.vy, p.vz});
+    };
+    std::apply([&](const auto&... p) { (put(p), ...); }, crank_throw_parts());
+    REQUIRE(flat.size() == 116);
+    const std::vector<double> short_list(flat.begin(), flat.end() - 1);
+    check_error(pradis_element_tests::flat_add_error<crank_throw>(m, "short", d, short_list),
+                error_code::parameter_count, "THROW", "short", "got 115 parameters");
+    flat[58 + 2] = 0.0;  // part 5 (pin rear, BEAM3), its parameter 3: the area
+    m.add_flat<crank_throw>("bad", d, flat);
+    simulation sim(m);
+    check_error(error_from([&] { sim.run({.end = 1e-4, .smax = 1e-5}); }), error_code::invalid_parameter, "THROW",
+                "bad", "part 5 'BEAM3' (pin rear), parameters 59..73 of THROW: area A = 0 must be > 0");
+  }
+}
