@@ -89,27 +89,6 @@ using crank_throw =
               throw_maps::pin_a<elastic_beam>, throw_maps::pin_a<beam_inertia>, throw_maps::pin_b<elastic_beam>,
               throw_maps::pin_b<beam_inertia>, throw_maps::web_b<elastic_beam>, throw_maps::web_b<beam_inertia>>;
 
-/// The part maps of THROW (BEAM3 and BEAMI3 have the same local DOFs: A x y z q1 q2 q3, B x y z q1 q2 q3,
-/// qA4, qB4).
-namespace throw_maps {
-template <class E>
-using web_a = part<E, 0, 1, 2, 3, 4, 5, 14, 15, 16, 17, 18, 19, 12, 20>;
-template <class E>
-using pin_a = part<E, 14, 15, 16, 17, 18, 19, 21, 22, 23, 24, 25, 26, 20, 27>;
-template <class E>
-using pin_b = part<E, 21, 22, 23, 24, 25, 26, 28, 29, 30, 31, 32, 33, 27, 34>;
-template <class E>
-using web_b = part<E, 28, 29, 30, 31, 32, 33, 6, 7, 8, 9, 10, 11, 34, 13>;
-}  // namespace throw_maps
-
-/// THROW: a crank throw as one element. External DOFs: the two ends (web roots) A and B with their rotational
-/// nodes; parameters: the 8 parts' (BEAM3 15, BEAMI3 14 each) in the order front web, its mass, pin front,
-/// its mass, pin rear, its mass, rear web, its mass (116 in all).
-using crank_throw =
-    composite<crank_throw_spec, throw_maps::web_a<elastic_beam>, throw_maps::web_a<beam_inertia>,
-              throw_maps::pin_a<elastic_beam>, throw_maps::pin_a<beam_inertia>, throw_maps::pin_b<elastic_beam>,
-              throw_maps::pin_b<beam_inertia>, throw_maps::web_b<elastic_beam>, throw_maps::web_b<beam_inertia>>;
-
 /// The parameters of a THROW with its front web root at (x0, 0, 0) along global X: crank radius r (pin along
 /// Y = r), pin from x0 to x0 + length in two pieces, webs of width b (along Z) and thickness t (along X), a
 /// round pin of diameter d, steel E, G, rho. The defaults are the throw of examples/crankshaft (r = 40 mm,
