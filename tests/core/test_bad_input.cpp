@@ -16,24 +16,15 @@
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "testing/test_support.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
 
 namespace {
 
-/// Runs f and returns the pradis::error it throws (nullopt if none).
-template <class F>
-std::optional<error> error_of(F&& f) {
-  try {
-    f();
-  } catch (const error& e) {
-    return e;
-  }
-  return std::nullopt;
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using pradis_test::contains;
+using pradis_test::error_of;
 
 /// The last non-empty line of a log.
 std::string last_line(const std::string& s) {

@@ -22,23 +22,15 @@
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "testing/test_support.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
 
 namespace {
 
-template <class F>
-std::optional<error> error_of(F&& f) {
-  try {
-    f();
-  } catch (const error& e) {
-    return e;
-  }
-  return std::nullopt;
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using pradis_test::contains;
+using pradis_test::error_of;
 
 /// What the probe saw at one call.
 struct event {

@@ -17,8 +17,6 @@ using namespace pradis::elements;
 using namespace pradis_element_tests;
 
 namespace {
-constexpr double inf = std::numeric_limits<double>::infinity();
-
 // Principal branch of the Lambert W function for x > 0: Newton on f(w) = w + ln w - ln x
 // (w e^w = x in logarithmic form, safe for huge x).
 double lambert_w(double x) {

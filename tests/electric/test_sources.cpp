@@ -19,8 +19,6 @@ using namespace pradis::elements;
 using namespace pradis_element_tests;
 
 namespace {
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double deg = std::numbers::pi / 180;
 
 // Integral from 0 to t of the table (0, 0), (1, 2), (3, -2), constant -2 after t = 3, by hand:
 // 0..1: t^2; 1..3: 1 + 2 (t-1) - (t-1)^2; after 3: 1 - 2 (t - 3) (the area 1 + 4 - 4 = 1 at t = 3).

@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <span>
@@ -14,6 +15,7 @@
 #include <utility>
 
 #include "pradis/pradis.hpp"
+#include "testing/test_support.hpp"
 
 namespace pradis_element_tests {
 
@@ -31,13 +33,19 @@ inline pradis::run_options fixed_step(double end, double h) {
 /// Runs f and returns the pradis::error it throws, or nothing.
 template <class F>
 std::optional<pradis::error> error_from(F&& f) {
-  try {
-    std::forward<F>(f)();
-  } catch (const pradis::error& e) {
-    return e;
-  }
-  return std::nullopt;
+  return pradis_test::error_of(std::forward<F>(f));
 }
+
+using pradis_test::inf;
+using pradis_test::not_a_number;
+
+/// One degree in radians.
+inline constexpr double deg = std::numbers::pi / 180;
+
+/// Bulk modulus (Pa) and density (kg/m^3) of a typical mineral oil.
+inline constexpr double oil_b = 1.5e9, oil_rho = 850;
+/// The regularised root of the orifice law, r(x) = x / (x^2 + d^2)^(1/4).
+inline double reg_root(double x, double d) { return x / std::pow(x * x + d * d, 0.25); }
 
 /// Checks that `e` holds an error with this code, element type and instance,
 /// whose message mentions `mention`.

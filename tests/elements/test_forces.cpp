@@ -16,11 +16,6 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
-namespace {
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
-}  // namespace
-
 TEST_SUITE("elements/F") {
   TEST_CASE_TEMPLATE("a constant force accelerates a free mass from rest as u = P t^2 / (2 m), exactly for Newmark and Stoermer",
                      Scheme, pradis::newmark, pradis::stoermer) {

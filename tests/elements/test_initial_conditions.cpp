@@ -16,8 +16,6 @@ using namespace pradis::elements;
 using namespace pradis_element_tests;
 
 namespace {
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
 using ic_model = model<point_mass, initial_displacement, initial_velocity, displacement_source, velocity_source>;
 

@@ -26,11 +26,6 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
-namespace {
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
-}  // namespace
-
 TEST_SUITE("elements/MASS") {
   TEST_CASE("a mass on a spring oscillates as u0 cos(wt) + v0/w sin(wt) within the trapezoidal phase error") {
     // Undamped oscillator m u'' + k u = 0: u = u0 cos(wt) + v0/w sin(wt), w = sqrt(k/m).

@@ -18,12 +18,6 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
-namespace {
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
-constexpr double deg = std::numbers::pi / 180;
-}  // namespace
-
 TEST_SUITE("elements/MD") {
   TEST_CASE("a free MD body under constant forces and a constant moment moves on exact parabolas") {
     // m x'' = Fx, m y'' = Fy, J theta'' = Mz (Newton-Euler for a free rigid body, forces at the

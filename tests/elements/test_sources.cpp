@@ -16,12 +16,6 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
-namespace {
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
-constexpr double deg = std::numbers::pi / 180;
-}  // namespace
-
 TEST_SUITE("elements/XSRC") {
   TEST_CASE("a spring divider driven by XSRC follows k2/(k1+k2) u_src and the reaction W(1) is k2 (u_src - u1)") {
     // Massless DOF 1 between a spring k1 to the ground and a spring k2 to the driven DOF 2:

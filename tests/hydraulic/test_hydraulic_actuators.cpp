@@ -14,11 +14,6 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
-namespace {
-constexpr double oil_b = 1.5e9, oil_rho = 850;
-double reg_root(double x, double d) { return x / std::pow(x * x + d * d, 0.25); }
-}  // namespace
-
 TEST_SUITE("hydraulic/HCYL") {
   TEST_CASE("a constant chamber pressure accelerates a mass with the force A p: x = A p t^2 / (2 m)") {
     // m x'' = AA pA (pB = 0 on the tank): constant acceleration, reproduced exactly by the

@@ -19,13 +19,6 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
-namespace {
-// Typical mineral oil.
-constexpr double oil_b = 1.5e9, oil_rho = 850;
-// The regularised root of HORT, r(x) = x / (x^2 + d^2)^(1/4).
-double reg_root(double x, double d) { return x / std::pow(x * x + d * d, 0.25); }
-}  // namespace
-
 TEST_SUITE("hydraulic/HVOL") {
   TEST_CASE("a volume fed by a constant flow builds up pressure p = B q t / V") {
     // Volume balance (V / B) dp/dt = q (Merritt, Hydraulic Control Systems, 1967, eq. 3-37 with

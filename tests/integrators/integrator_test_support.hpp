@@ -15,6 +15,11 @@
 
 namespace pradis_test {
 
+/// Newton tolerances relative to the state (absolute ones would be unreachable
+/// at small steps).
+inline constexpr pradis::newton_options rel_newton{
+    .dabsu = 1e-14, .drltu = 1e-12, .dabsi = 1e-14, .drlti = 1e-12, .itr = 8};
+
 /// Newton options tight enough that the Newton error is far below every
 /// discretisation error measured in these tests (the defaults DABSU = 0.01,
 /// DABSI = 0.1 are engineering tolerances, not test tolerances). `dabsi` is the

@@ -42,10 +42,9 @@ using namespace pradis::elements;
 
 namespace {
 
-using osc_model = model<point_mass, linear_spring, initial_displacement, initial_velocity>;
+using alpha_osc_model = model<point_mass, linear_spring, initial_displacement, initial_velocity>;
 
-/// Newton tolerances relative to the state (absolute ones would be unreachable at small steps).
-constexpr newton_options rel_newton{.dabsu = 1e-14, .drltu = 1e-12, .dabsi = 1e-14, .drlti = 1e-12, .itr = 8};
+using pradis_test::rel_newton;
 
 struct states {
   std::vector<double> t, u, v, p;
@@ -56,7 +55,7 @@ struct states {
 template <class Scheme>
 states run_fixed(Scheme scheme, double w, double h, double t_end, double u0, double v0,
                  newton_options nw = rel_newton) {
-  osc_model m;
+  alpha_osc_model m;
   const dof x = m.add_dof("x");
   m.add<point_mass>("mass", {1.0}, x);
   m.add<linear_spring>("spring", {w * w}, x, m.ground());

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "integrator_test_support.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/simulation.hpp"
@@ -30,7 +31,7 @@ namespace {
 
 using msd_model = model<point_mass, linear_spring, linear_damper, initial_displacement, initial_velocity>;
 
-constexpr newton_options rel_newton{.dabsu = 1e-14, .drltu = 1e-12, .dabsi = 1e-14, .drlti = 1e-12, .itr = 8};
+using pradis_test::rel_newton;
 
 struct result {
   double u = 0, v = 0;

@@ -19,14 +19,14 @@ using namespace pradis::elements;
 namespace {
 using pendulum_model = model<point_mass, planar_link, planar_rigid_link, constant_force>;
 
-struct pendulum_run {
+struct stiff_pendulum_run {
   run_statistics stats;
   double x = 0, y = 0;
 };
 
 // Mass 1 on a link of length 1 from the origin, released from the horizontal;
 // k > 0: LINKD of stiffness k, k = 0: the exact LINKX. HHT alpha = -0.1, fixed h.
-pendulum_run pendulum(double k, double h, double end) {
+stiff_pendulum_run pendulum(double k, double h, double end) {
   pendulum_model m;
   const dof x = m.add_dof("x"), y = m.add_dof("y");
   m.add<point_mass>("mx", {1.0}, x);
@@ -39,7 +39,7 @@ pendulum_run pendulum(double k, double h, double end) {
   simulation<pendulum_model, alpha_family> sim(m, alpha_family(hht{-0.1}));
   run_options o{.end = end, .smax = h};
   o.newton = {.dabsu = 1e-10, .drltu = 1e-10, .dabsi = 1e-6, .drlti = 1e-12, .itr = 8};
-  pendulum_run out;
+  stiff_pendulum_run out;
   out.stats = sim.run(o);
   out.x = sim.u(x);
   out.y = sim.u(y);
@@ -49,7 +49,7 @@ pendulum_run pendulum(double k, double h, double end) {
 
 TEST_SUITE("integrators/newton on stiff elements") {
   TEST_CASE("a 1e12 penalty link with tight Newton tolerances runs at its fixed step without cuts") {
-    const pendulum_run stiff = pendulum(1e12, 1e-3, 0.5), exact = pendulum(0, 1e-3, 0.5);
+    const stiff_pendulum_run stiff = pendulum(1e12, 1e-3, 0.5), exact = pendulum(0, 1e-3, 0.5);
     CHECK(stiff.stats.steps == 500);
     CHECK(stiff.stats.rejected_steps == 0);
     // At most ITR iterations per step (measured: about 3).

@@ -20,13 +20,13 @@ using namespace pradis::elements;
 namespace {
 using stiff_model = model<point_mass, linear_spring, initial_displacement>;
 
-struct stiff_run {
+struct precision_run {
   double max_u = 0;     // largest |u| over the run
   std::string log;      // the diagnostics log
 };
 
 // MASS m on SPRING k to the ground, X0 = 1, V0 = 0, fixed steps h up to t = 1.
-stiff_run run_stiff(double m, double k, double h, const alpha_family& scheme) {
+precision_run run_stiff(double m, double k, double h, const alpha_family& scheme) {
   stiff_model mod;
   const dof x = mod.add_dof("x");
   mod.add<point_mass>("mass", {m}, x);
@@ -35,7 +35,7 @@ stiff_run run_stiff(double m, double k, double h, const alpha_family& scheme) {
   simulation<stiff_model, alpha_family> sim(mod, scheme);
   std::ostringstream log;
   sim.log().to(log);
-  stiff_run out;
+  precision_run out;
   sim.on_step([&](const auto& s) { out.max_u = std::max(out.max_u, std::abs(s.u(x))); });
   sim.run({.end = 1.0, .smax = h});
   out.log = log.str();
@@ -50,7 +50,7 @@ TEST_SUITE("integrators/precision") {
     // Element Method, Dover 2000, section 9.1.4), so |u| <= sqrt(2 E / k) = 1 with
     // X0 = 1, V0 = 0 for every step size; before u was computed from the
     // velocities, the cancellation of h^2 (a0 + a) / 4 gave |u| up to 17.
-    const stiff_run r = run_stiff(1e-12, 1e12, 1e-3, alpha_family(newmark{}));
+    const precision_run r = run_stiff(1e-12, 1e12, 1e-3, alpha_family(newmark{}));
     CHECK(r.max_u <= 1.0 + 1e-12);
     CHECK(r.max_u >= 1.0 - 1e-12);  // u alternates between +1 and -1 at omega h -> infinity
     CHECK(r.log.find("loss of precision") == std::string::npos);
@@ -59,7 +59,7 @@ TEST_SUITE("integrators/precision") {
   TEST_CASE("generalized-alpha on the same DOF warns that the displacement is lost in round-off") {
     // rho_inf = 0.5: u is computed from h^2 (1/2 - beta/gamma) a0 with |a0| = k/m |u| =
     // 1e24 |u|, i.e. from terms 1e17 times |u|: u is resolved only to ~eps 1e17.
-    const stiff_run r = run_stiff(1e-12, 1e12, 1e-3, alpha_family(generalized_alpha{0.5}));
+    const precision_run r = run_stiff(1e-12, 1e12, 1e-3, alpha_family(generalized_alpha{0.5}));
     CHECK(r.log.find("warning: loss of precision: at t = 0.001 ") != std::string::npos);
     CHECK(r.log.find("the displacement of DOF 'x' is resolved only to") != std::string::npos);
     // Written once per stage.
@@ -70,7 +70,7 @@ TEST_SUITE("integrators/precision") {
   TEST_CASE("a step that resolves the element's frequency writes no precision warning") {
     // omega = 1, h = 1e-3: every term of the update is of the size of u.
     for (const alpha_family& s : {alpha_family(newmark{}), alpha_family(hht{-0.1}), alpha_family(generalized_alpha{0.5})}) {
-      const stiff_run r = run_stiff(1.0, 1.0, 1e-3, s);
+      const precision_run r = run_stiff(1.0, 1.0, 1e-3, s);
       CHECK(r.log.find("loss of precision") == std::string::npos);
       CHECK(r.max_u <= 1.0 + 1e-12);  // energy conserved (Newmark) or dissipated
     }

@@ -73,10 +73,10 @@ static_assert(LinearSolver<linalg::sparse_lu<linalg::automatic_ordering>>);
 static_assert(!LinearSolver<no_solve>);
 static_assert(!LinearSolver<int>);
 
-using osc_model = model<point_mass, linear_spring, linear_damper, initial_displacement, initial_velocity, sine_force>;
+using user_osc_model = model<point_mass, linear_spring, linear_damper, initial_displacement, initial_velocity, sine_force>;
 
 /// Two masses on springs (a chain to the ground), damped, one of them shaken.
-void build_chain(osc_model& m) {
+void build_chain(user_osc_model& m) {
   const auto d = m.add_dofs(2, "x");
   m.add<point_mass>("m1", {1.0}, d[0]);
   m.add<point_mass>("m2", {2.0}, d[1]);
@@ -87,7 +87,7 @@ void build_chain(osc_model& m) {
   m.add<sine_force>("shake", {.amplitude = 5, .frequency = 2, .phase_deg = 0, .offset = 0}, d[1]);
 }
 
-run_options stage(double end, double h = 1e-3) { return {.end = end, .smax = h, .newton = tight_newton()}; }
+run_options user_stage(double end, double h = 1e-3) { return {.end = end, .smax = h, .newton = tight_newton()}; }
 
 /// Bit-for-bit equality of two final states.
 bool same_state(const global_state& a, const global_state& b) {
@@ -99,7 +99,7 @@ bool same_state(const global_state& a, const global_state& b) {
 TEST_SUITE("integrators/user types") {
   TEST_CASE("a user-written trapezoidal scheme follows the exact discrete solution of the trapezoidal rule") {
     const double w = 10.0, h = 0.02, u0 = 0.3;
-    osc_model m;
+    user_osc_model m;
     const dof x = m.add_dof("x");
     m.add<point_mass>("mass", {1.0}, x);
     m.add<linear_spring>("spring", {w * w}, x, m.ground());
@@ -113,25 +113,25 @@ TEST_SUITE("integrators/user types") {
       worst = std::max(worst, std::abs(s.u(x) - u0 * std::cos(n * theta)));
       ++rows;
     });
-    sim.run(stage(2.0, h));
+    sim.run(user_stage(2.0, h));
     CHECK(rows == 101);
     CHECK(worst < 1e-9);
     // The same numbers as the library's average-acceleration Newmark (up to round-off).
-    osc_model m2;
+    user_osc_model m2;
     const dof x2 = m2.add_dof("x");
     m2.add<point_mass>("mass", {1.0}, x2);
     m2.add<linear_spring>("spring", {w * w}, x2, m2.ground());
     m2.add<initial_displacement>("x0", {u0}, x2);
     simulation ref(m2, newmark{});
-    ref.run(stage(2.0, h));
+    ref.run(user_stage(2.0, h));
     CHECK(sim.u(x) == doctest::Approx(ref.u(x2)).epsilon(1e-10));
   }
 
   TEST_CASE("a user scheme outside the alpha family runs with error control (first-order error estimate)") {
-    osc_model m;
+    user_osc_model m;
     build_chain(m);
     simulation sim(m, user_trapezoidal{});
-    run_options o = stage(0.5, 1e-2);
+    run_options o = user_stage(0.5, 1e-2);
     o.error_control = true;
     o.dabsx = 1e-6;
     o.drltx = 1e-6;
@@ -139,21 +139,21 @@ TEST_SUITE("integrators/user types") {
     CHECK(sim.time() == 0.5);
     CHECK(sim.statistics().steps > 50);  // the tolerance forces steps below SMAX
     // The error-controlled result is close to a fine fixed-step one of the same scheme.
-    osc_model m2;
+    user_osc_model m2;
     build_chain(m2);
     simulation fine(m2, user_trapezoidal{});
-    fine.run(stage(0.5, 1e-4));
+    fine.run(user_stage(0.5, 1e-4));
     for (int d = 1; d <= 2; ++d) CHECK(std::abs(sim.state().u(d) - fine.state().u(d)) < 1e-4);
   }
 
   TEST_CASE("a user's dense linear solver gives the results of the sparse LU") {
-    osc_model a, b;
+    user_osc_model a, b;
     build_chain(a);
     build_chain(b);
-    simulation<osc_model, newmark, user_dense_lu> sa(a);
+    simulation<user_osc_model, newmark, user_dense_lu> sa(a);
     simulation sb(b, newmark{});
-    sa.run(stage(0.3));
-    sb.run(stage(0.3));
+    sa.run(user_stage(0.3));
+    sb.run(user_stage(0.3));
     CHECK(sa.solver().factorizations > 0);
     for (int d = 1; d <= 2; ++d) {
       CHECK(sa.state().u(d) == doctest::Approx(sb.state().u(d)).epsilon(1e-10));
@@ -162,13 +162,13 @@ TEST_SUITE("integrators/user types") {
   }
 
   TEST_CASE("alpha_family computes what the scheme it was made from computes, bit for bit") {
-    osc_model a, b;
+    user_osc_model a, b;
     build_chain(a);
     build_chain(b);
-    simulation<osc_model, alpha_family> sa(a, hht(-0.2));
+    simulation<user_osc_model, alpha_family> sa(a, hht(-0.2));
     simulation sb(b, hht(-0.2));
-    sa.run(stage(0.3));
-    sb.run(stage(0.3));
+    sa.run(user_stage(0.3));
+    sb.run(user_stage(0.3));
     CHECK(same_state(sa.state(), sb.state()));
     CHECK(sa.scheme().label() == "HHT");
     // Option messages carry the name of the scheme in use.
@@ -176,30 +176,30 @@ TEST_SUITE("integrators/user types") {
   }
 
   TEST_CASE("set_scheme between stages equals a checkpoint reloaded into a simulation with the new scheme") {
-    osc_model a, b;
+    user_osc_model a, b;
     build_chain(a);
     build_chain(b);
-    simulation<osc_model, alpha_family> sa(a, newmark{});
-    sa.run(stage(0.25));
+    simulation<user_osc_model, alpha_family> sa(a, newmark{});
+    sa.run(user_stage(0.25));
     std::stringstream cp;
     sa.save_checkpoint(cp);
     sa.set_scheme(generalized_alpha(0.5));
     CHECK(sa.scheme().label() == "GALPHA");
-    sa.run(stage(0.5));
+    sa.run(user_stage(0.5));
 
-    simulation<osc_model, alpha_family> sb(b, generalized_alpha(0.5));
+    simulation<user_osc_model, alpha_family> sb(b, generalized_alpha(0.5));
     sb.load_checkpoint(cp);
     sb.restart_scheme();
-    sb.run(stage(0.5));
+    sb.run(user_stage(0.5));
     CHECK(sa.time() == sb.time());
     CHECK(sa.statistics().steps == sb.statistics().steps);
     CHECK(same_state(sa.state(), sb.state()));
     // The switch took effect: the Newmark run to 0.5 differs.
-    osc_model c;
+    user_osc_model c;
     build_chain(c);
     simulation sc(c, newmark{});
-    sc.run(stage(0.25));
-    sc.run(stage(0.5));
+    sc.run(user_stage(0.25));
+    sc.run(user_stage(0.5));
     CHECK_FALSE(same_state(sa.state(), sc.state()));
   }
 }

@@ -13,25 +13,15 @@
 #include <vector>
 
 #include "pradis/io/table.hpp"
+#include "testing/test_support.hpp"
 
 namespace {
-std::filesystem::path scratch(const std::string& tag) {
-  std::random_device rd;
-  auto p = std::filesystem::temp_directory_path() / ("pradis_csv_" + tag + "_" + std::to_string(rd()));
-  std::filesystem::create_directories(p);
-  return p;
-}
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream os;
-  os << f.rdbuf();
-  return os.str();
-}
+using pradis_test::slurp;
 }  // namespace
 
 TEST_SUITE("io/csv file") {
   TEST_CASE("rows go to <path>.part until commit renames it; 17 significant digits read back exactly") {
-    const auto dir = scratch("commit");
+    const auto dir = pradis_test::scratch_dir("csv_commit");
     const auto path = (dir / "r.csv").string();
     {
       pradis::io::csv_file f(path, {"x", "a,b", "q\"t"});
@@ -58,7 +48,7 @@ TEST_SUITE("io/csv file") {
 
   TEST_CASE("a failed rename keeps the complete temporary file and names it") {
     // The final name is taken by a non-empty directory: rename(2) cannot replace it.
-    const auto dir = scratch("rename");
+    const auto dir = pradis_test::scratch_dir("csv_rename");
     const auto path = dir / "r.csv";
     std::filesystem::create_directories(path / "occupied");
     {
@@ -81,7 +71,7 @@ TEST_SUITE("io/csv file") {
   }
 
   TEST_CASE("without commit (an exception unwinding) the temporary file is removed") {
-    const auto dir = scratch("abandon");
+    const auto dir = pradis_test::scratch_dir("csv_abandon");
     const auto path = (dir / "r.csv").string();
     {
       pradis::io::csv_file f(path, {"x"});
@@ -96,7 +86,7 @@ TEST_SUITE("io/csv file") {
       MESSAGE("no /dev/full on this system: checked on Linux only");
       return;
     }
-    const auto dir = scratch("full");
+    const auto dir = pradis_test::scratch_dir("csv_full");
     const auto path = (dir / "r.csv").string();
     std::filesystem::create_symlink("/dev/full", path + ".part");
     pradis::io::table t({"x"});
@@ -113,7 +103,7 @@ TEST_SUITE("io/csv file") {
   }
 
   TEST_CASE("a file that cannot be created names the file and the reason") {
-    const auto dir = scratch("nodir");
+    const auto dir = pradis_test::scratch_dir("csv_nodir");
     const auto path = (dir / "missing" / "r.csv").string();
     try {
       pradis::io::csv_file f(path, {"x"});
@@ -126,7 +116,7 @@ TEST_SUITE("io/csv file") {
   }
 
   TEST_CASE("a row with the wrong number of values is refused") {
-    const auto dir = scratch("count");
+    const auto dir = pradis_test::scratch_dir("csv_count");
     pradis::io::csv_file f((dir / "r.csv").string(), {"x", "y"});
     CHECK_THROWS_AS(f.add_row(0.0, std::vector<double>{1.0}), pradis::error);
     f.abandon();

@@ -14,18 +14,13 @@
 
 #include "pradis/io/csv_file.hpp"
 #include "pradis/io/table_csv.hpp"
+#include "testing/test_support.hpp"
 
 using pradis::io::parse_table_csv;
 using pradis::io::read_table_csv;
 using pradis::io::table_csv_error;
 
 namespace {
-std::filesystem::path scratch(const std::string& tag) {
-  std::random_device rd;
-  auto p = std::filesystem::temp_directory_path() / ("pradis_tcsv_" + tag + "_" + std::to_string(rd()));
-  std::filesystem::create_directories(p);
-  return p;
-}
 std::optional<table_csv_error> parse_error(const std::string& text) {
   try {
     parse_table_csv(text, "t.csv");
@@ -58,7 +53,7 @@ TEST_SUITE("io/table csv") {
   }
 
   TEST_CASE("a table written by io::csv_file reads back exactly (17 significant digits)") {
-    const auto dir = scratch("round");
+    const auto dir = pradis_test::scratch_dir("tcsv_round");
     const auto path = (dir / "curve.csv").string();
     std::vector<double> want;
     {
@@ -92,7 +87,7 @@ TEST_SUITE("io/table csv") {
   }
 
   TEST_CASE("a missing table file or a directory is an io error naming the path and the reason") {
-    const auto dir = scratch("missing");
+    const auto dir = pradis_test::scratch_dir("tcsv_missing");
     const std::string path = (dir / "nowhere.csv").string();
     try {
       read_table_csv(path);

@@ -10,13 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "testing/test_support.hpp"
+
 namespace vtk_test {
-inline std::string slurp(const std::filesystem::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using pradis_test::slurp;
 /// The numbers inside the first <DataArray ... Name="name" ...> element.
 inline std::vector<double> data_array(const std::string& xml, const std::string& name) {
   const std::size_t at = xml.find("Name=\"" + name + "\"");

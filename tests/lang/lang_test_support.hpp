@@ -9,10 +9,12 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <source_location>
 #include <sstream>
 #include <string>
 
 #include "pradis/lang/lang.hpp"
+#include "testing/test_support.hpp"
 
 namespace lang_test {
 
@@ -30,20 +32,9 @@ inline std::filesystem::path models_dir() {
 }
 
 /// A fresh scratch directory for tests that write files.
-inline std::filesystem::path scratch_dir(const std::string& tag) {
-  std::random_device rd;
-  auto p = std::filesystem::temp_directory_path() / ("pradis_lang_" + tag + "_" + std::to_string(rd()));
-  std::filesystem::create_directories(p);
-  return p;
-}
+inline std::filesystem::path scratch_dir(const std::string& tag) { return pradis_test::scratch_dir("lang_" + tag); }
 
-/// The whole content of a file (empty if it cannot be read).
-inline std::string slurp(const std::filesystem::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream os;
-  os << f.rdbuf();
-  return os.str();
-}
+using pradis_test::slurp;
 
 /// A loader over in-memory files (for $INCLUDE tests).
 inline pradis::lang::file_loader memory_loader(std::map<std::string, std::string> files) {
@@ -77,6 +68,20 @@ inline std::string error_of(const std::string& text, const pradis::lang::file_lo
     return e.what();
   }
   return {};
+}
+
+/// Expects `text` to fail with a located error: the message starts with
+/// `test.prd:<where>: error: ` and contains every one of `parts`.
+inline void expect_error(const std::string& text, const std::string& where, std::initializer_list<const char*> parts,
+                         std::source_location here = std::source_location::current()) {
+  const std::string e = error_of(text);
+  const int line = static_cast<int>(here.line());
+  CAPTURE(line);
+  CAPTURE(text);
+  CAPTURE(e);
+  REQUIRE_FALSE(e.empty());
+  CHECK(e.rfind("test.prd:" + where + ": error: ", 0) == 0);
+  for (const char* p : parts) CHECK(e.find(p) != std::string::npos);
 }
 
 /// A valid small model (mass on a spring, constant force) with placeholders

@@ -11,6 +11,7 @@
 #include "lang_test_support.hpp"
 
 using namespace pradis;
+using lang_test::expect_error;
 using lang_test::small_with;
 
 namespace {
@@ -21,15 +22,6 @@ using lang_test::slurp;
 std::string model_with(const std::string& before_run, const std::string& stages) {
   std::string text = small_with("$RUN\n  Calc 'SHTERM (END=0.1, SMAX=1E-3)\n", before_run + "$RUN\n" + stages);
   return text.replace(text.find("  Spring force"), 0, "  V 'X (1; 2)\n  A 'X (1; 3)\n");
-}
-/// Expects a located error of `text` at `where` containing every part.
-void expect(const std::string& text, const std::string& where, std::initializer_list<const char*> parts) {
-  const std::string e = lang_test::error_of(text);
-  CAPTURE(text);
-  CAPTURE(e);
-  REQUIRE_FALSE(e.empty());
-  CHECK(e.rfind("test.prd:" + where + ": error: ", 0) == 0);
-  for (const char* p : parts) CHECK(e.find(p) != std::string::npos);
 }
 }  // namespace
 
@@ -127,18 +119,18 @@ TEST_SUITE("lang/save") {
     std::ofstream(dir / "bad.chk", std::ios::binary) << bad;
     const std::string text =
         model_with("$RESTORE \"" + (dir / "bad.chk").string() + "\"\n", "  B 'GALPHA (END=0.1, SMAX=1E-3)\n");
-    expect(text, "15:1", {"bad.chk': its record of the integration scheme is damaged"});
+    expect_error(text, "15:1", {"bad.chk': its record of the integration scheme is damaged"});
     std::filesystem::remove_all(dir);
   }
 
   TEST_CASE("bad SAVE values are located errors naming the key") {
-    expect(small_with("SMAX=1E-3", "SMAX=1E-3, SAVE=0"), "14:37",
+    expect_error(small_with("SMAX=1E-3", "SMAX=1E-3, SAVE=0"), "14:37",
            {"SAVE = 0 must be a number > 0 (the interval of simulated time between checkpoints)"});
-    expect(small_with("SMAX=1E-3", "SMAX=1E-3, SAVE=-0.5"), "14:37", {"SAVE = -0.5 must be a number > 0"});
+    expect_error(small_with("SMAX=1E-3", "SMAX=1E-3, SAVE=-0.5"), "14:37", {"SAVE = -0.5 must be a number > 0"});
     {
       std::string pair = small_with("  Load = 10\n", "  Load = 10\n  Pair = 1, 2\n");
       pair.replace(pair.find("SMAX=1E-3"), 9, "SMAX=1E-3, SAVE=Pair");
-      expect(pair, "15:42", {"SAVE needs one value; 'Pair' is a list of 2"});
+      expect_error(pair, "15:42", {"SAVE needs one value; 'Pair' is a list of 2"});
     }
     // NaN cannot be written in a model file (no arithmetic, no NaN literal); a
     // syntax tree built by a program can carry it, and is refused the same way.
@@ -162,10 +154,10 @@ TEST_SUITE("lang/save") {
       CHECK(e.rfind("test.prd:14:37: error: SAVE = nan must be a number > 0", 0) == 0);
     }
     // Too many checkpoints for the stage.
-    expect(small_with("SMAX=1E-3", "SMAX=1E-3, SAVE=1E-6"), "14:37",
+    expect_error(small_with("SMAX=1E-3", "SMAX=1E-3, SAVE=1E-6"), "14:37",
            {"SAVE = 1e-06 would write ", " checkpoints in this stage (from t = 0 to END = 0.1); at most 10000"});
     // Checkpoint times k SAVE out of reach of double precision: a stage far from t = 0.
-    expect(small_with("  Calc 'SHTERM (END=0.1, SMAX=1E-3)\n",
+    expect_error(small_with("  Calc 'SHTERM (END=0.1, SMAX=1E-3)\n",
                       "  Far 'SHTERM (END=1E11, SMAX=1E11)\n  Near 'SHTERM (END=1.00000001E11, SMAX=1, SAVE=0.5)\n"),
            "15:44", {"SAVE = 0.5 is too small for END = 1.00000001e+11", "k <= 1e11"});
   }

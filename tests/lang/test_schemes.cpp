@@ -17,7 +17,7 @@ using lang_test::small_with;
 namespace {
 
 /// Mass 1 on spring 1 (omega = 1), released from u = 1 at rest; one stage `stage`.
-std::string oscillator(const std::string& stage) {
+std::string free_oscillator(const std::string& stage) {
   return "$FRAGMENT\n"
          "#STRUCTURE\n"
          "  Body 'MASS (1; 1)\n"
@@ -73,7 +73,7 @@ TEST_SUITE("lang/schemes") {
     };
     for (const row& c : {row{"0.5", 1.24809e-3, 1.84187e-5}, row{"0.8", 8.79024e-4, 6.84445e-7}}) {
       CAPTURE(c.rho);
-      auto s = lang_test::run(oscillator(std::string("Free 'GALPHA (END=300, SMAX=0.1, RHOINF=") + c.rho + ")"));
+      auto s = lang_test::run(free_oscillator(std::string("Free 'GALPHA (END=300, SMAX=0.1, RHOINF=") + c.rho + ")"));
       REQUIRE(s->results().rows() > 2990);
       const measured m = period_and_damping(s->results(), 0.1);
       CHECK(m.period_error == doctest::Approx(c.period_error).epsilon(1e-5));
@@ -92,7 +92,7 @@ TEST_SUITE("lang/schemes") {
     for (const char* alpha : {"-0.1", "-0.3", "-0.33333333333333333"}) {
       CAPTURE(alpha);
       const double al = std::stod(alpha);
-      auto s = lang_test::run(oscillator(std::string("Free 'HHT (END=600, SMAX=0.05, ALPHA=") + alpha + ")"));
+      auto s = lang_test::run(free_oscillator(std::string("Free 'HHT (END=600, SMAX=0.05, ALPHA=") + alpha + ")"));
       REQUIRE(s->results().rows() > 11990);
       const measured m = period_and_damping(s->results(), omega_h);
       const double w2 = omega_h * omega_h;
@@ -103,15 +103,15 @@ TEST_SUITE("lang/schemes") {
 
   TEST_CASE("'HHT with ALPHA=0 is 'NEWMARK average acceleration, bit for bit; defaults are ALPHA=-0.05, RHOINF=0.8") {
     // alpha = 0 gives beta = 1/4, gamma = 1/2, alpha_f = 0: Newmark's parameters.
-    auto hht0 = lang_test::run(oscillator("Free 'HHT (END=5, SMAX=0.1, ALPHA=0)"));
-    auto nm = lang_test::run(oscillator("Free 'NEWMARK (END=5, SMAX=0.1)"));
+    auto hht0 = lang_test::run(free_oscillator("Free 'HHT (END=5, SMAX=0.1, ALPHA=0)"));
+    auto nm = lang_test::run(free_oscillator("Free 'NEWMARK (END=5, SMAX=0.1)"));
     REQUIRE(hht0->results().rows() == nm->results().rows());
     for (std::size_t r = 0; r < nm->results().rows(); ++r) CHECK(hht0->results().at(r, 1) == nm->results().at(r, 1));
     // Omitted keys take the library's defaults.
-    auto hd = lang_test::run(oscillator("Free 'HHT (END=1, SMAX=0.1)"));
-    auto he = lang_test::run(oscillator("Free 'HHT (END=1, SMAX=0.1, ALPHA=-0.05)"));
-    auto gd = lang_test::run(oscillator("Free 'GALPHA (END=1, SMAX=0.1)"));
-    auto ge = lang_test::run(oscillator("Free 'GALPHA (END=1, SMAX=0.1, RHOINF=0.8)"));
+    auto hd = lang_test::run(free_oscillator("Free 'HHT (END=1, SMAX=0.1)"));
+    auto he = lang_test::run(free_oscillator("Free 'HHT (END=1, SMAX=0.1, ALPHA=-0.05)"));
+    auto gd = lang_test::run(free_oscillator("Free 'GALPHA (END=1, SMAX=0.1)"));
+    auto ge = lang_test::run(free_oscillator("Free 'GALPHA (END=1, SMAX=0.1, RHOINF=0.8)"));
     CHECK(hd->simulation_ptr()->scheme().coefficients_set().alpha_f == 0.05);
     CHECK(gd->simulation_ptr()->scheme().coefficients_set().alpha_f == 0.8 / 1.8);
     for (std::size_t r = 0; r < hd->results().rows(); ++r) {

@@ -14,10 +14,12 @@
 
 #include "pradis/core/error.hpp"
 #include "pradis/linalg/ordering.hpp"
+#include "linalg/fill_of.hpp"
 #include "pradis/linalg/sparse_lu.hpp"
 #include "pradis/linalg/sparsity.hpp"
 
 namespace {
+using pradis_linalg_test::fill_of;
 
 using pradis::error;
 using pradis::error_code;
@@ -118,13 +120,6 @@ std::vector<int> brute_force_min_fill(const sparsity_pattern& p) {
     adj[best].clear();
   }
   return perm;
-}
-
-template <class Ordering>
-long fill_of(const sparsity_pattern& p) {
-  sparse_lu<Ordering> lu;
-  lu.analyze(p);
-  return lu.statistics().fill;
 }
 
 }  // namespace

@@ -20,7 +20,6 @@ using namespace pradis_element_tests;
 namespace pn = pradis::elements::pneumatic;
 
 namespace {
-constexpr double inf = std::numeric_limits<double>::infinity();
 // Newton tolerances for pneumatic nodes: the DOF scale (1e5 Pa, 1e-5 kg/s) multiplies them.
 constexpr newton_options tight_pneumatic{.dabsu = 1e-14, .drltu = 0, .dabsi = 1e-9, .drlti = 0};
 run_options pneumatic_step(double end, double h) { return {.end = end, .smax = h, .newton = tight_pneumatic}; }

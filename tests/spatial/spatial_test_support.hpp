@@ -6,11 +6,21 @@
 
 #include <chrono>
 #include <cmath>
+#include <numbers>
 
 #include "pradis/pradis.hpp"
 #include "pradis/spatial/node_state.hpp"
 
 namespace pradis_spatial_tests {
+
+inline constexpr double pi = std::numbers::pi;
+/// Standard gravity used by the spatial scenes [m/s^2].
+inline constexpr double g = 9.81;
+
+/// BODY3 parameters: mass and principal moments of inertia, no initial motion.
+inline pradis::elements::rigid_body::parameters body(double m, double jx, double jy, double jz) {
+  return {m, jx, jy, jz, 0, 0, 0, 0, 0, 0};
+}
 
 /// Wall-clock seconds since t0 (reported by the tests next to their figures).
 inline double seconds_since(std::chrono::steady_clock::time_point t0) {

@@ -31,7 +31,7 @@ using pradis_element_tests::check_error;
 using pradis_element_tests::error_from;
 
 namespace {
-constexpr double pi = std::numbers::pi;
+using pradis_spatial_tests::pi;
 
 /// Cantilever data: length 1 m along X, section vector along Y, E Iy = 1, E Iz = 2.
 struct section {

@@ -26,10 +26,10 @@ using pradis_spatial_tests::seconds_since;
 using pradis_spatial_tests::tight_newton;
 
 namespace {
-constexpr double pi = std::numbers::pi;
-constexpr double g = 9.81;
+using pradis_spatial_tests::pi;
+using pradis_spatial_tests::g;
 /// Body parameters: mass m, principal inertias (jx, jy, jz), centre of mass at the reference point.
-rigid_body::parameters body(double m, double jx, double jy, double jz) { return {m, jx, jy, jz, 0, 0, 0, 0, 0, 0}; }
+using pradis_spatial_tests::body;
 /// Seconds since t0.
 }  // namespace
 

@@ -23,7 +23,7 @@ using pradis_spatial_tests::seconds_since;
 using pradis_spatial_tests::tight_newton;
 
 namespace {
-constexpr double pi = std::numbers::pi;
+using pradis_spatial_tests::pi;
 /// An isotropic body: mass m, central inertia j about every axis.
 rigid_body::parameters sphere(double m, double j) { return {m, j, j, j, 0, 0, 0, 0, 0, 0}; }
 }  // namespace

@@ -38,18 +38,18 @@ using namespace pradis::spatial;
 using pradis_spatial_tests::tight_newton;
 
 namespace {
-constexpr double pi = std::numbers::pi;
-constexpr double g = 9.81;
+using pradis_spatial_tests::pi;
+using pradis_spatial_tests::g;
 using family_model =
     model<rigid_body, exact_spherical_joint, exact_revolute_joint, exact_universal_joint, exact_cylindrical_joint, exact_prismatic_joint,
           exact_fixed_joint, exact_point_on_line, exact_point_on_plane, spatial_force, spatial_torque, body_torque,
           initial_rotation, initial_displacement>;
 
 /// A rigid body with principal inertias j (body axes along the global axes at t = 0).
-struct body {
+struct family_body {
   std::vector<dof> x;
   rotation_node r;
-  body(family_model& m, const std::string& name, double mass, const vec3& j) {
+  family_body(family_model& m, const std::string& name, double mass, const vec3& j) {
     x = m.add_dofs(3, name + ".x");
     r = m.add_rotation_node(name + ".r");
     m.add<rigid_body>(name, {mass, j.x(), j.y(), j.z(), 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
@@ -107,7 +107,7 @@ TEST_SUITE("spatial/exact joint family") {
     const double mass = 2.0, alpha = 30 * pi / 180, end = 1.0, h = 1e-3;
     const vec3 e(std::cos(alpha), 0, std::sin(alpha)), load(0, 1.5, -mass * g), torque(0.3, -0.2, 0.5);
     family_model m;
-    const body b(m, "body", mass, {0.1, 0.2, 0.3});
+    const family_body b(m, "body", mass, {0.1, 0.2, 0.3});
     const dof G = m.ground();
     const auto slider = m.add<exact_prismatic_joint>(
         "slider", {{}, e.x(), e.y(), e.z(), 0, 1, 0, e.x(), e.y(), e.z(), 0, 1, 0}, G, G, G, G, G, G, b.x[0], b.x[1],
@@ -139,7 +139,7 @@ TEST_SUITE("spatial/exact joint family") {
     const double mass = 1.5, jzz = 0.04, end = 0.4, h = 1e-3;
     const vec3 load(0, 0.7, -mass * g), torque(0.3, 0, 0.8);
     family_model m;
-    const body b(m, "body", mass, {0.02, 0.02, jzz});
+    const family_body b(m, "body", mass, {0.02, 0.02, jzz});
     const dof G = m.ground();
     const auto joint = m.add<exact_cylindrical_joint>("cyl", {{}, 0, 0, 1, 0, 0, 1}, G, G, G, G, G, G, b.x[0],
                                                       b.x[1], b.x[2], b.r);
@@ -172,7 +172,7 @@ TEST_SUITE("spatial/exact joint family") {
     const double mass = 1.0, jxx = 0.02, d = 0.5, theta0 = 30 * pi / 180, h = 1e-3, spin_torque = 0.3;
     const double exact = pendulum_period(jxx + mass * d * d, mass * g * d, theta0);
     family_model m;
-    const body b(m, "body", mass, {jxx, 0.015, 0.01});
+    const family_body b(m, "body", mass, {jxx, 0.015, 0.01});
     const dof G = m.ground();
     // Cross axis X fixed in the ground, cross axis Y fixed in the body.
     const auto joint = m.add<exact_universal_joint>("cardan", {{0, 0, 0, 0, 0, 0, 0, 0, -d, 0, 0, d}, 1, 0, 0, 0, 1, 0},
@@ -211,8 +211,8 @@ TEST_SUITE("spatial/exact joint family") {
     const double ma = 1.0, mb = 0.5, jxa = 0.02, jxb = 0.01, d = 0.4, theta0 = 30 * pi / 180, h = 1e-3;
     const double exact = pendulum_period(jxa + jxb + mb * d * d, mb * g * d, theta0);
     family_model m;
-    const body a(m, "a", ma, {jxa, 0.02, 0.01});
-    const body b(m, "b", mb, {jxb, 0.008, 0.004});
+    const family_body a(m, "a", ma, {jxa, 0.02, 0.01});
+    const family_body b(m, "b", mb, {jxb, 0.008, 0.004});
     const dof G = m.ground();
     m.add<exact_revolute_joint>("hinge", {{}, 1, 0, 0, 1, 0, 0}, G, G, G, G, G, G, a.x[0], a.x[1], a.x[2], a.r);
     const auto weld =
@@ -247,7 +247,7 @@ TEST_SUITE("spatial/exact joint family") {
     const double mass = 1.2, jzz = 0.03, alpha = 40 * pi / 180, end = 0.5, h = 1e-3;
     const vec3 e(std::cos(alpha), 0, std::sin(alpha)), load(0, 0, -mass * g);
     family_model m;
-    const body b(m, "bead", mass, {0.01, 0.02, jzz});
+    const family_body b(m, "bead", mass, {0.01, 0.02, jzz});
     const dof G = m.ground();
     const auto wire = m.add<exact_point_on_line>("wire", {{}, e.x(), e.y(), e.z()}, G, G, G, G, G, G, b.x[0], b.x[1],
                                                  b.x[2], b.r);
@@ -277,7 +277,7 @@ TEST_SUITE("spatial/exact joint family") {
     const double mass = 2.0, alpha = 25 * pi / 180, end = 0.5, h = 1e-3;
     const vec3 n(0, -std::sin(alpha), std::cos(alpha)), load(1.0, 0, -mass * g);
     family_model m;
-    const body b(m, "block", mass, {0.1, 0.1, 0.1});
+    const family_body b(m, "block", mass, {0.1, 0.1, 0.1});
     const dof G = m.ground();
     const auto plane = m.add<exact_point_on_plane>("plane", {{}, n.x(), n.y(), n.z()}, G, G, G, G, G, G, b.x[0],
                                                    b.x[1], b.x[2], b.r);
@@ -346,7 +346,7 @@ TEST_SUITE("spatial/exact joint family") {
     // matter: without it the force would be off by m |w x (w x c)|.
     const double mass = 1.0, l = 0.1, j1 = 0.01, j3 = 0.02, w3 = 30.0, theta0 = 30 * pi / 180;
     family_model m;
-    const body top(m, "top", mass, {j1, j1, j3});
+    const family_body top(m, "top", mass, {j1, j1, j3});
     const dof G = m.ground();
     const vec3 axis0(0, -std::sin(theta0), std::cos(theta0)), c = l * axis0, w = w3 * axis0, gv(0, 0, -g);
     const auto joint = m.add<exact_spherical_joint>(
@@ -406,11 +406,12 @@ TEST_SUITE("spatial/exact joint family") {
     }
     return {rotation_matrix(quaternion(y.head<4>())), y.tail<3>()};
   }
+  namespace {  // internal linkage: the lambda below captures a type of the file's anonymous namespace
   template <class Scheme>
   controlled_top heavy_top_under_error_control(Scheme scheme, double tol, double end = 0.2, std::ostream* log = nullptr) {
     const double mass = 1.0, l = 0.1, j1 = 0.01, j3 = 0.02, w3 = 30.0, theta0 = 30 * pi / 180;
     family_model m;
-    const body top(m, "top", mass, {j1, j1, j3});
+    const family_body top(m, "top", mass, {j1, j1, j3});
     const dof G = m.ground();
     const vec3 axis0(0, -std::sin(theta0), std::cos(theta0)), c = l * axis0, w = w3 * axis0;
     const auto joint = m.add<exact_spherical_joint>(
@@ -437,6 +438,7 @@ TEST_SUITE("spatial/exact joint family") {
     out.omega_b = out.rot.transpose() * node_angular_velocity(sim, top.r);
     return out;
   }
+  }  // namespace
 
   TEST_CASE("error control with exact joints: the multipliers are left out of the error test; the energy error "
             "falls with the tolerance and is below it") {
@@ -506,40 +508,40 @@ TEST_SUITE("spatial/exact joint family") {
   TEST_CASE("bad parameters of the exact joint family stop the run with code 100 naming the joint") {
     struct bad_case {
       std::string type, message;
-      std::function<void(family_model&, const body&, dof)> add;
+      std::function<void(family_model&, const family_body&, dof)> add;
     };
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const std::vector<bad_case> cases{
         {"UNI3X", "cross axis e_b",
-         [](family_model& m, const body& b, dof G) {
+         [](family_model& m, const family_body& b, dof G) {
            m.add<exact_universal_joint>("joint", {{}, 1, 0, 0, 0, 0, 0}, G, G, G, G, G, G, b.x[0], b.x[1], b.x[2], b.r);
          }},
         {"CYL3X", "not finite",
-         [nan](family_model& m, const body& b, dof G) {
+         [nan](family_model& m, const family_body& b, dof G) {
            m.add<exact_cylindrical_joint>("joint", {{0, 0, 0, 0, 0, 0, 0, 0, nan, 0, 0, 0}, 0, 0, 1, 0, 0, 1}, G, G, G,
                                           G, G, G, b.x[0], b.x[1], b.x[2], b.r);
          }},
         {"CYL3X", "axis e_a",
-         [](family_model& m, const body& b, dof G) {
+         [](family_model& m, const family_body& b, dof G) {
            m.add<exact_cylindrical_joint>("joint", {{}, 0, 0, 0, 0, 0, 1}, G, G, G, G, G, G, b.x[0], b.x[1], b.x[2],
                                           b.r);
          }},
         {"PRI3X", "reference vector t_a is parallel to the axis e_a",
-         [](family_model& m, const body& b, dof G) {
+         [](family_model& m, const family_body& b, dof G) {
            m.add<exact_prismatic_joint>("joint", {{}, 0, 0, 1, 0, 0, 2, 0, 0, 1, 1, 0, 0}, G, G, G, G, G, G, b.x[0],
                                         b.x[1], b.x[2], b.r);
          }},
         {"FIX3X", "t_b",
-         [](family_model& m, const body& b, dof G) {
+         [](family_model& m, const family_body& b, dof G) {
            m.add<exact_fixed_joint>("joint", {{}, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0}, G, G, G, G, G, G, b.x[0], b.x[1],
                                     b.x[2], b.r);
          }},
         {"PTL3X", "direction e",
-         [](family_model& m, const body& b, dof G) {
+         [](family_model& m, const family_body& b, dof G) {
            m.add<exact_point_on_line>("joint", {{}, 0, 0, 0}, G, G, G, G, G, G, b.x[0], b.x[1], b.x[2], b.r);
          }},
         {"PTP3X", "normal n",
-         [nan](family_model& m, const body& b, dof G) {
+         [nan](family_model& m, const family_body& b, dof G) {
            m.add<exact_point_on_plane>("joint", {{}, 0, nan, 1}, G, G, G, G, G, G, b.x[0], b.x[1], b.x[2], b.r);
          }},
     };
@@ -547,7 +549,7 @@ TEST_SUITE("spatial/exact joint family") {
       CAPTURE(c.type);
       CAPTURE(c.message);
       family_model m;
-      const body b(m, "body", 1.0, {1, 1, 1});
+      const family_body b(m, "body", 1.0, {1, 1, 1});
       c.add(m, b, m.ground());
       simulation sim(m);
       try {

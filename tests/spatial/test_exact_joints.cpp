@@ -27,8 +27,8 @@ using namespace pradis::spatial;
 using pradis_spatial_tests::tight_newton;
 
 namespace {
-constexpr double pi = std::numbers::pi;
-constexpr double g = 9.81;
+using pradis_spatial_tests::pi;
+using pradis_spatial_tests::g;
 using joint_model = model<rigid_body, exact_spherical_joint, exact_revolute_joint, spatial_force, spatial_torque,
                           initial_rotation, initial_displacement>;
 }  // namespace

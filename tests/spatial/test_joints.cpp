@@ -30,8 +30,8 @@ using pradis_spatial_tests::seconds_since;
 using pradis_spatial_tests::tight_newton;
 
 namespace {
-constexpr double pi = std::numbers::pi;
-constexpr double g = 9.81;
+using pradis_spatial_tests::pi;
+using pradis_spatial_tests::g;
 
 /// Exact period of a compound pendulum released at rest from theta0 about a rigid pivot
 /// (axis): T = 4 sqrt(I_pivot / (m g d)) K(sin(theta0 / 2)), I_pivot = J + m d^2, K the

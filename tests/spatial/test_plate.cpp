@@ -22,6 +22,7 @@
 #include "pradis/elements/library.hpp"
 #include "pradis/elements/spatial/plate_mesh.hpp"
 #include "pradis/testing/jacobian_check.hpp"
+#include "spatial_test_support.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
@@ -29,7 +30,7 @@ using pradis_element_tests::check_error;
 using pradis_element_tests::error_from;
 
 namespace {
-constexpr double pi = std::numbers::pi;
+using pradis_spatial_tests::pi;
 using plate_model = model<triangle_plate>;
 
 /// The global matrices of a plate model from the elements' evaluate at u = v = a = 0:

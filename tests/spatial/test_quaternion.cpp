@@ -17,12 +17,13 @@
 #include <random>
 
 #include "pradis/spatial/quaternion.hpp"
+#include "spatial_test_support.hpp"
 
 using namespace pradis::spatial;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using pradis_spatial_tests::pi;
 
 /// A random non-unit quaternion with |q| in [0.5, 2].
 quaternion random_quaternion(std::mt19937& rng) {

@@ -46,9 +46,9 @@ std::string spin_model(const std::string& more_elements, const std::string& outp
          "    Spin up 'NEWMARK (END=1, OUT=0.1, SMAX=1E-3, DABSU=1E-12, DRLTU=0, DABSI=1E-10, DRLTI=0)\n"
          "$END\n";
 }
-constexpr double pi = std::numbers::pi;
+using pradis_spatial_tests::pi;
 /// Body parameters: mass m, principal inertias (jx, jy, jz), centre of mass at P.
-rigid_body::parameters body(double m, double jx, double jy, double jz) { return {m, jx, jy, jz, 0, 0, 0, 0, 0, 0}; }
+using pradis_spatial_tests::body;
 /// Angle of the rotation between two quaternions [rad] (0 when they are the same rotation).
 double angle_between(const quaternion& a, const quaternion& b) { return to_axis_angle(relative_rotation(a, b)).angle; }
 /// Angle between q and the rotation by theta about Z.

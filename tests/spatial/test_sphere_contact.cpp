@@ -45,7 +45,7 @@ using namespace pradis::spatial;
 using pradis_spatial_tests::tight_newton;
 
 namespace {
-constexpr double g = 9.81;
+using pradis_spatial_tests::g;
 using contact_model = model<rigid_body, sphere_plane_contact, sphere_sphere_contact, spatial_force, initial_velocity,
                             initial_rotation, rotational_spring_damper>;
 

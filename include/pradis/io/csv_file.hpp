@@ -43,18 +43,10 @@ class csv_file {
 
   /// Appends one row: time and one value per column (throws if the count differs).
   void add_row(double t, std::span<const double> values) {
-    if (values.size() != columns_)
-      throw error(error_code::invalid_option, "CSV row has " + std::to_string(values.size()) + " values for " +
-                                                  std::to_string(columns_) + " columns");
+    check_count(values);
     line_.clear();
     append(t);
-    for (double x : values) {
-      line_ += ',';
-      append(x);
-    }
-    line_ += '\n';
-    put(line_);
-    ++rows_;
+    finish_row(values);
     // At least once a second the rows reach the operating system, so that a
     // killed run (or a crash) leaves them in `<path>.part`.
     const auto now = std::chrono::steady_clock::now();
@@ -66,17 +58,9 @@ class csv_file {
 
   /// Appends one row whose first column is a text (a name) instead of a time.
   void add_row(const std::string& label, std::span<const double> values) {
-    if (values.size() != columns_)
-      throw error(error_code::invalid_option, "CSV row has " + std::to_string(values.size()) + " values for " +
-                                                  std::to_string(columns_) + " columns");
+    check_count(values);
     line_ = quote(label);
-    for (double x : values) {
-      line_ += ',';
-      append(x);
-    }
-    line_ += '\n';
-    put(line_);
-    ++rows_;
+    finish_row(values);
   }
 
   /// Hands the buffered rows to the operating system (checked).
@@ -137,6 +121,21 @@ class csv_file {
   }
 
  private:
+  void check_count(std::span<const double> values) const {
+    if (values.size() != columns_)
+      throw error(error_code::invalid_option, "CSV row has " + std::to_string(values.size()) + " values for " +
+                                                  std::to_string(columns_) + " columns");
+  }
+  /// Appends the values to the first column already in line_ and writes the row.
+  void finish_row(std::span<const double> values) {
+    for (double x : values) {
+      line_ += ',';
+      append(x);
+    }
+    line_ += '\n';
+    put(line_);
+    ++rows_;
+  }
   [[noreturn]] void fail(const std::string& what) {
     const int e = errno;
     const std::string reason = e != 0 ? std::strerror(e) : "write error";

@@ -1,0 +1,54 @@
+#pragma once
+// Helpers shared by the test files of several directories: bad parameter
+// values, catching a pradis::error, substring checks and scratch files. One copy
+// here, so the files of a unity group (tests/CMakeLists.txt) do not collide.
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include "pradis/core/error.hpp"
+
+namespace pradis_test {
+
+/// Bad parameter values for the code-100 tests.
+inline constexpr double inf = std::numeric_limits<double>::infinity();
+inline constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
+
+/// Runs f and returns the pradis::error it throws (nullopt if none).
+template <class F>
+std::optional<pradis::error> error_of(F&& f) {
+  try {
+    f();
+  } catch (const pradis::error& e) {
+    return e;
+  }
+  return std::nullopt;
+}
+
+/// Whether `s` contains `part`.
+inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+/// A fresh scratch directory for tests that write files.
+inline std::filesystem::path scratch_dir(const std::string& tag) {
+  std::random_device rd;
+  auto p = std::filesystem::temp_directory_path() / ("pradis_" + tag + "_" + std::to_string(rd()));
+  std::filesystem::create_directories(p);
+  return p;
+}
+
+/// The whole content of a file (empty if it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream os;
+  os << f.rdbuf();
+  return os.str();
+}
+
+}  // namespace pradis_test
