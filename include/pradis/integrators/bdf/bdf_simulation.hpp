@@ -28,7 +28,7 @@
 /// rate / (1 - rate) |dy| <= bdf_options::newton_tolerance in the error norm,
 /// and fails when the rate exceeds newton_options::max_rate or after
 /// newton_options::itr iterations. The Jacobian is refreshed when c changed by
-/// more than newton_options::coefficient_change since the factorisation (a kept
+/// more than bdf_options::coefficient_change (default: at all) since the factorisation (a kept
 /// one has its corrections scaled by 2 / (1 + c / c_J)), at the start of every
 /// stage and before a failed step is redone. PRADIS's DABSU/DRLTU/DABSI/DRLTI
 /// are not used, nor is newton_options::method (always modified Newton).
@@ -321,7 +321,8 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     const long iter0 = stats_.newton_iterations;
     bdf_detail::newton_memory mem{jac_valid_, c_jac_, ss_};
     const bool ok = bdf_detail::correct(
-        asm_, solver_, s_, y_p_, yp_p_, c, hist_.c_last(), w_, opt_.newton, bopt_.newton_tolerance, mem, rhs_, dy_,
+        asm_, solver_, s_, y_p_, yp_p_, c, hist_.c_last(), w_, opt_.newton, bopt_.newton_tolerance,
+        bopt_.coefficient_change, mem, rhs_, dy_,
         stats_, last_failure_, [&](const jacobian_coefficients& jc, bool jac, int k) { evaluate(jc, h, jac, k, true); });
     jac_valid_ = mem.valid;
     c_jac_ = mem.c_jac;

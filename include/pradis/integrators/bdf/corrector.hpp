@@ -15,7 +15,8 @@
 ///   correction, a singular matrix or situation, or after newton_options::itr
 ///   corrections;
 /// - the Jacobian is evaluated and factorised when none is kept, or when c left
-///   [c_J (1 - x) / (1 + x), c_J (1 + x) / (1 - x)], x = coefficient_change;
+///   [c_J (1 - x) / (1 + x), c_J (1 + x) / (1 - x)], x = the window argument
+///   (bdf_options::coefficient_change);
 ///   a kept one has its corrections scaled by 2 / (1 + c / c_J) (IDA); a step
 ///   that failed with a kept Jacobian is retried at once with a fresh one.
 
@@ -60,13 +61,13 @@ void complete_state(const Assembler& as, global_state& s, const Eigen::VectorXd&
 template <class Assembler, class Solver, class Evaluate>
 bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::VectorXd& y_p, const Eigen::VectorXd& yp_p,
              double c, double c_last, const Eigen::VectorXd& w, const newton_options& nw, double eps,
-             newton_memory& mem, std::vector<double>& rhs, Eigen::VectorXd& dy, run_statistics& stats,
+             double window, newton_memory& mem, std::vector<double>& rhs, Eigen::VectorXd& dy, run_statistics& stats,
              std::optional<error>& failure, Evaluate&& evaluate) {
   const int ne = as.equations();
   const jacobian_coefficients jc{1 / c, 1, c};
   bool refresh = !mem.valid;
-  if (nw.coefficient_change < 1 && mem.valid) {
-    const double lo = (1 - nw.coefficient_change) / (1 + nw.coefficient_change), r = c / mem.c_jac;
+  if (window < 1 && mem.valid) {
+    const double lo = (1 - window) / (1 + window), r = c / mem.c_jac;
     refresh = !(r >= lo && r <= 1 / lo);
   }
   if (c != c_last) mem.ss = 100;

@@ -2,9 +2,10 @@
 /// \file
 /// Options of the variable-order BDF driver pradis::bdf_simulation (docs/bdf.md)
 /// and their check. The stage options (END, OUT, SMAX, SMIN, DRLTX, DABSX,
-/// ERROR_CONTROL, IGNORE, the Newton limits ITR, max_rate, coefficient_change)
-/// come from pradis::run_options as for pradis::simulation; these are the
-/// options that only the BDF method has.
+/// ERROR_CONTROL, IGNORE, the Newton limits ITR and max_rate) come from
+/// pradis::run_options as for pradis::simulation; these are the options that
+/// only the BDF method has (its Jacobian refresh rule among them: the
+/// newton_options::coefficient_change of run_options is not used).
 
 #include <limits>
 #include <optional>
@@ -37,6 +38,18 @@ struct bdf_options {
   /// [SMIN, SMAX]). Used only with error control: without it the run starts at
   /// SMIN and doubles the step up to SMAX.
   double initial_step = 0;
+  /// The kept Jacobian is refreshed when c = alpha_s / h moved out of
+  /// [c_J (1 - x) / (1 + x), c_J (1 + x) / (1 - x)] since its factorisation,
+  /// x = this value. Default 0: at every change of c (of the step or the
+  /// order); constant-step runs keep it. IDA's window (x = 0.25) suits its
+  /// first-order form J = G_y + c G_y'. The Newton matrix of the nodal form,
+  /// K / c + C + c M, moves further with c, and with rotational nodes M
+  /// depends on the orientation, so a kept Jacobian ages with the rotation as
+  /// well. Measured on bench/work_precision (docs/bdf.md): x = 0 against
+  /// 0.25 takes the free body from 3.3x to 1.7x IDA's time and the heavy top
+  /// from 0.89x to 0.49x; the problems without rotations are unchanged within
+  /// the noise. x >= 1 refreshes only on a Newton failure.
+  double coefficient_change = 0;
 };
 
 /// Checks bdf_options; returns the message of the first invalid one (the
@@ -50,6 +63,8 @@ inline std::optional<std::string> check_bdf_options(const bdf_options& o) {
     return "the Newton tolerance " + num(o.newton_tolerance) + " must be in (0, 1]";
   if (!(o.initial_step >= 0) || o.initial_step == std::numeric_limits<double>::infinity())
     return "the initial step " + num(o.initial_step) + " must be a finite number >= 0";
+  if (!(o.coefficient_change >= 0) || o.coefficient_change == std::numeric_limits<double>::infinity())
+    return "the Jacobian coefficient change " + num(o.coefficient_change) + " must be a finite number >= 0";
   return std::nullopt;
 }
 
