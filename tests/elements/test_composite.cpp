@@ -16,6 +16,7 @@
 #include "element_test_support.hpp"
 #include "pradis/elements/electric/passive.hpp"
 #include "pradis/elements/spatial/crank_throw.hpp"
+#include "pradis/io/model_scene.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
@@ -217,7 +218,8 @@ TEST_SUITE("elements/composite") {
     CHECK(c.work[static_cast<std::size_t>(throw_t::stats)] == checked);  // the evaluation count
   }
 
-  TEST_CASE("a THROW moves as the expanded model of its BEAM3 and BEAMI3 parts, to round-off") {
+  TEST_CASE("a THROW moves as the expanded model of its BEAM3 and BEAMI3 parts, to round-off, and draws the "
+            "same animation scene") {
     // Same equations, same DOF numbering (the expanded model creates its DOFs in the order THROW's placement
     // creates its internal ones), same integrator (Newmark, the default) and the same 200 steps of 1e-5 s (no
     // step cut in either run: the Newton tolerances are tight but reachable, three iterations a step). Only
@@ -282,11 +284,15 @@ TEST_SUITE("elements/composite") {
         u.push_back(sim.state().u(d));
         q4.push_back(m.dof_name(d).ends_with(".q4") || m.dof_name(d).starts_with("rotation node"));
       }
-      return std::make_tuple(u, q4, m.dof_count());
+      // The animation scene (io/model_scene.hpp): THROW draws its parts through their maps.
+      const io::vtk_scene scene = io::model_scene(m);
+      std::vector<spatial::vec3> points;
+      for (std::size_t i = 0; i < scene.points(); ++i) points.push_back(scene.motion(sim, i).position);
+      return std::make_tuple(u, q4, m.dof_count(), points, scene.connectivity(), scene.types());
     };
-    const auto [ue, qe, ne] = run(expanded);
-    const auto [ur, qr, nr] = run(reversed);
-    const auto [uc, qc, nc] = run(as_throw);
+    const auto [ue, qe, ne, pe, ce, te] = run(expanded);
+    const auto [ur, qr, nr, pr, cr, tr] = run(reversed);
+    const auto [uc, qc, nc, pc, cc, tc] = run(as_throw);
     REQUIRE(ne == nc);
     REQUIRE(nr == nc);
     CHECK(qe == qc);  // the same DOFs in the same order
@@ -308,6 +314,20 @@ TEST_SUITE("elements/composite") {
     CHECK(dthrow <= 2 * dreversed);
     CHECK(dthrow <= 1e-10 * umax);
     CHECK(dq4 <= 1e-12);  // q4 stays near 1: round-off relative to 1
+    // The scenes: the 5 nodes of the throw and its 4 beam lines (BEAM3 and BEAMI3 draw the same line, kept
+    // once), in the same order, and the points where the DOFs put them (beam ends carry no offset, so a point
+    // moves exactly as its translational DOFs).
+    CHECK(pe.size() == 5);
+    CHECK(te.size() == 4);
+    CHECK(pc.size() == pe.size());
+    CHECK(cc == ce);
+    CHECK(tc == te);
+    double dpoint = 0;
+    for (std::size_t i = 0; i < std::min(pc.size(), pe.size()); ++i) dpoint = std::max(dpoint, (pc[i] - pe[i]).norm());
+    CHECK(dpoint <= std::sqrt(3.0) * dthrow);
+    (void)pr;
+    (void)cr;
+    (void)tr;
   }
 
   TEST_CASE("a part's error names the super-element, its instance and the part, with the part's code") {

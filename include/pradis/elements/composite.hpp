@@ -145,6 +145,21 @@ struct composite {
       return parameters{{Ps::element::example()...}};
   }
 
+  /// Draws every part that has a draw hook (io/model_scene.hpp), its local DOFs
+  /// mapped into the composite's: a THROW shows its four beams. Parts without
+  /// one draw nothing.
+  template <class Drawer>
+  void draw(Drawer& d) const {
+    for_parts([&]<std::size_t I, class P>() {
+      if constexpr (requires(const typename P::element& e, composite_detail::part_drawer<Drawer, P>& pd) {
+                      e.draw(pd);
+                    }) {
+        composite_detail::part_drawer<Drawer, P> pd{d};
+        std::get<I>(parts_).draw(pd);
+      }
+    });
+  }
+
   /// Part I's element object.
   template <std::size_t I>
   const auto& get() const noexcept {

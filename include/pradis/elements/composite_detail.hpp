@@ -10,6 +10,8 @@
 #include <string>
 #include <string_view>
 
+#include <Eigen/Core>
+
 #include "pradis/core/domain.hpp"
 #include "pradis/core/element.hpp"
 
@@ -43,6 +45,28 @@ concept has_commit = requires(E& e, element_context& c) {
 template <class E>
 concept has_admissible = requires(const E& e, const local_input<E>& i) {
   { e.admissible(i) } -> std::convertible_to<bool>;
+};
+
+/// The drawer a part's draw hook receives inside a composite: the part's local
+/// DOFs and rotational nodes are mapped to the composite's, then drawn with the
+/// composite's drawer (io/model_scene.hpp, element_drawer).
+template <class Drawer, class P>
+struct part_drawer {
+  Drawer& d;
+  static constexpr auto& map = P::map;
+  static constexpr int at(int k) { return map[static_cast<std::size_t>(k)]; }
+  /// A point moving with the part's translational DOFs k, k+1, k+2.
+  int point(const Eigen::Vector3d& x0, int k) {
+    return d.point_at(x0, {at(k), at(k + 1), at(k + 2)});
+  }
+  /// A point of the body of the part's rotational node `node`.
+  int body_point(const Eigen::Vector3d& x0, int k, int node, const Eigen::Vector3d& offset) {
+    const rotation_slot s = P::element::rotation_nodes.at(static_cast<std::size_t>(node));
+    return d.body_point_at(x0, {at(k), at(k + 1), at(k + 2)}, rotation_slot{at(s.q1), at(s.q4)}, offset);
+  }
+  void vertex(int a) { d.vertex(a); }
+  void line(int a, int b) { d.line(a, b); }
+  void triangle(int a, int b, int c) { d.triangle(a, b, c); }
 };
 
 /// The passport keys the parts add up to.

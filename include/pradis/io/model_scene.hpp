@@ -83,14 +83,24 @@ class element_drawer {
 
   /// A point that starts at x0 and moves by the translational DOFs at local
   /// indices k, k+1, k+2 (X, Y, Z). Returns its scene index.
-  int point(const spatial::vec3& x0, int k) { return b_.point(x0, translations(k), nullptr, spatial::vec3::Zero()); }
+  int point(const spatial::vec3& x0, int k) { return point_at(x0, {k, k + 1, k + 2}); }
+  /// point() with any three local DOFs (X, Y, Z), e.g. a composite's part
+  /// mapped into the composite (elements/composite.hpp).
+  int point_at(const spatial::vec3& x0, const std::array<int, 3>& k) {
+    return b_.point(x0, translations(k), nullptr, spatial::vec3::Zero());
+  }
   /// A point fixed in a body: the reference point starts at x0 and moves by the
   /// translational DOFs at local k, k+1, k+2, and the body turns with the
   /// element's rotational node `node` (an index into E::rotation_nodes); the point
   /// sits at `offset` in the body frame: p = x0 + x + R(q) offset.
   int body_point(const spatial::vec3& x0, int k, int node, const spatial::vec3& offset) {
     static_assert(HasRotationNodes<E>, "body_point needs an element with rotational nodes");
-    const rotation_slot s = E::rotation_nodes.at(static_cast<std::size_t>(node));
+    return body_point_at(x0, {k, k + 1, k + 2}, E::rotation_nodes.at(static_cast<std::size_t>(node)), offset);
+  }
+  /// body_point() with any three local DOFs and the rotational node given by its
+  /// local slot (q1..q3 at s.q1.., q4 at s.q4).
+  int body_point_at(const spatial::vec3& x0, const std::array<int, 3>& k, rotation_slot s,
+                    const spatial::vec3& offset) {
     const rotation_node n{global(s.q1), global(s.q1 + 1), global(s.q1 + 2), global(s.q4), -1};
     return b_.point(x0, translations(k), &n, offset);
   }
@@ -103,12 +113,13 @@ class element_drawer {
 
  private:
   dof global(int k) const { return dof{in_.dofs.at(static_cast<std::size_t>(k))}; }
-  std::array<dof, 3> translations(int k) const { return {global(k), global(k + 1), global(k + 2)}; }
+  std::array<dof, 3> translations(const std::array<int, 3>& k) const { return {global(k[0]), global(k[1]), global(k[2])}; }
   scene_builder& b_;
   const element_instance<E>& in_;
 };
 
 /// Whether element type E draws itself (has `template <class D> void draw(D&) const`).
+/// A composite (elements/composite.hpp) draws its parts that do.
 template <class E>
 concept drawable = requires(const E& e, element_drawer<E>& d) { e.draw(d); };
 
