@@ -45,10 +45,8 @@ struct bdf_options {
   /// first-order form J = G_y + c G_y'. The Newton matrix of the nodal form,
   /// K / c + C + c M, moves further with c, and with rotational nodes M
   /// depends on the orientation, so a kept Jacobian ages with the rotation as
-  /// well. Measured on bench/work_precision (docs/bdf.md): x = 0 against
-  /// 0.25 takes the free body from 3.3x to 1.7x IDA's time and the heavy top
-  /// from 0.89x to 0.49x; the problems without rotations are unchanged within
-  /// the noise. x >= 1 refreshes only on a Newton failure.
+  /// well; the measurements against IDA are in docs/bdf.md ("Newton"). x >= 1
+  /// refreshes only on a Newton failure.
   double coefficient_change = 0;
 };
 
