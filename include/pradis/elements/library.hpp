@@ -41,6 +41,7 @@
 #include "pradis/elements/spatial/beam_inertia.hpp"
 #include "pradis/elements/spatial/coupling.hpp"
 #include "pradis/elements/spatial/crank_throw.hpp"
+#include "pradis/elements/spatial/reduced_body.hpp"
 #include "pradis/elements/spatial/initial_rotation.hpp"
 #include "pradis/elements/spatial/plate.hpp"
 #include "pradis/elements/spatial/loads.hpp"
@@ -77,9 +78,10 @@ using spatial_connector_elements =
 /// Spatial contact: a body-fixed sphere against a fixed plane (with Coulomb friction) or
 /// against another sphere (docs/contact.md).
 using spatial_contact_elements = type_list<sphere_plane_contact, sphere_sphere_contact>;
-/// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md), and the
-/// crank throw super-element made of them (docs/super-elements.md).
-using beam_elements = type_list<elastic_beam, beam_inertia, crank_throw>;
+/// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md), the
+/// crank throw super-element made of them (docs/super-elements.md), and the reduced elastic
+/// body FLEX3 with two boundary nodes and two modes (docs/reduction.md).
+using beam_elements = type_list<elastic_beam, beam_inertia, crank_throw, reduced_body_2x2>;
 /// Plates: the 12-DOF triangle plate with side rotations (docs/plates.md).
 using plate_elements = type_list<triangle_plate>;
 /// Hydraulics (docs/domains.md): pressure is the velocity-level unknown, volume flow the flow.
