@@ -17,6 +17,8 @@
 ///      7 rear main journal, in main bearing 2 (X = 0.15),
 ///      8 rear stub end with the flywheel (X = 0.22).
 ///    No counterweights: the webs and the pin are an unbalanced mass at the crank.
+///    Or, with cb_model_type, the same shaft as one Craig-Bampton body (FLEX3) on the
+///    nodes 0, 1, 4, 7, 8 with 6 fixed-interface modes of the others (docs/reduction.md).
 ///  - Main bearings: SPH3 from the ground to nodes 1 and 7 (a penalty spring-damper
 ///    on the journal's displacement, k_bearing; the shaft turns freely about X).
 ///    The radial runout of a journal sqrt(y^2 + z^2) is the bearing gap, the bearing
@@ -43,7 +45,9 @@
 ///    It is switched on smoothly over the first t_ignition = 50 ms (the crank starts
 ///    at top dead centre, where a sudden full gas force would be a step load).
 
+#include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <numbers>
 #include <span>
 #include <array>
@@ -51,6 +55,7 @@
 #include <string>
 
 #include "pradis/elements/library.hpp"
+#include "pradis/elements/spatial/beam_matrices.hpp"
 
 namespace crankshaft {
 
@@ -140,10 +145,85 @@ struct parameters {
 using model_type = model<elastic_beam, beam_inertia, rigid_body, spherical_joint, spatial_force, shaft_coupling,
                          velocity_source, point_mass, linear_damper, gas_force>;
 
+/// The shaft as one Craig-Bampton body (FLEX3, docs/reduction.md) instead of the eight
+/// BEAM3 + BEAMI3: its boundary nodes are the shaft nodes where other elements attach
+/// (cb_nodes: pulley, bearing 1, crank pin middle, bearing 2, flywheel), the inner
+/// nodes 2, 3, 5, 6 are condensed with cb_modes fixed-interface modes. Its matrices are
+/// those of the same eight beams linearised at rest (shaft_matrices).
+inline constexpr std::array<int, 5> cb_nodes{0, 1, 4, 7, 8};
+inline constexpr int cb_modes = 6;
+using cb_shaft = reduced_body<5, cb_modes>;
+using cb_model_type = model<cb_shaft, rigid_body, spherical_joint, spatial_force, shaft_coupling, velocity_source,
+                            point_mass, linear_damper, gas_force>;
+
+/// The initial positions of the shaft nodes 0..8.
+inline std::vector<std::array<double, 3>> shaft_positions(const parameters& P) {
+  const double r = P.r;
+  return {{0, 0, 0}, {0.05, 0, 0}, {0.08, 0, 0}, {0.08, r, 0}, {0.10, r, 0}, {0.12, r, 0}, {0.12, 0, 0}, {0.15, 0, 0}, {0.22, 0, 0}};
+}
+
+/// One shaft segment: from node i to node i + 1, its section and the vector of its local y axis.
+struct shaft_segment {
+  int i = 0;
+  double a = 0, iy = 0, iz = 0, j = 0;
+  double vx = 0, vy = 0, vz = 0;
+};
+
+/// The eight segments: stub, journal, web, pin (two pieces), web, journal, stub.
+inline std::array<shaft_segment, 8> shaft_segments(const parameters& P) {
+  const double pi = std::numbers::pi;
+  // Sections: round a (diameter d): A = pi d^2/4, I = pi d^4/64, J = 2 I;
+  // the web (b along Z, t along X, length along Y): local y axis = global X.
+  auto round = [&](int i, double d) {
+    const double a = pi * d * d / 4, in = pi * d * d * d * d / 64;
+    return shaft_segment{i, a, in, in, 2 * in, 0, 1, 0};
+  };
+  const double b = P.web_b, t = P.web_t;
+  // Web along Y, local y = X (thickness t), local z = x_local x y_local = Y x X = -Z (width b).
+  // Iy (about local y = X, bending in the plane of local x and z) = t b^3/12, Iz = b t^3/12,
+  // J of a thin-ish rectangle: b t^3/3 (1 - 0.63 t/b).
+  auto web = [&](int i) {
+    return shaft_segment{i, b * t, t * b * b * b / 12, b * t * t * t / 12, b * t * t * t / 3 * (1 - 0.63 * t / b), 1, 0, 0};
+  };
+  return {round(0, P.d_journal), round(1, P.d_journal), web(2), round(3, P.d_pin),
+          round(4, P.d_pin),     web(5),                round(6, P.d_journal), round(7, P.d_journal)};
+}
+
+/// K and M of the shaft (nodes 0..8, 6 DOFs each): the eight segments as one linear beam
+/// element each, BEAM3 and BEAMI3 linearised at rest (straight_beam_matrices).
+inline beam_matrices shaft_matrices(const parameters& P) {
+  const auto pos = shaft_positions(P);
+  beam_matrices all{Eigen::MatrixXd::Zero(54, 54), Eigen::MatrixXd::Zero(54, 54)};
+  for (const shaft_segment& s : shaft_segments(P)) {
+    const auto& a = pos[static_cast<std::size_t>(s.i)];
+    const auto& b = pos[static_cast<std::size_t>(s.i + 1)];
+    const beam_matrices e = straight_beam_matrices({P.e, P.g, s.a, s.iy, s.iz, s.j, P.rho, s.iy + s.iz}, {a[0], a[1], a[2]},
+                                                   {b[0], b[1], b[2]}, {s.vx, s.vy, s.vz}, 1);
+    all.k.block<12, 12>(6 * s.i, 6 * s.i) += e.k;
+    all.m.block<12, 12>(6 * s.i, 6 * s.i) += e.m;
+  }
+  return all;
+}
+
+/// The typed parameters of the Craig-Bampton shaft.
+inline cb_shaft::parameters cb_shaft_parameters(const parameters& P) {
+  const beam_matrices km = shaft_matrices(P);
+  const auto pos = shaft_positions(P);
+  std::vector<int> boundary;
+  std::array<spatial::vec3, 5> nodes;
+  for (std::size_t k = 0; k < cb_nodes.size(); ++k) {
+    const auto& x = pos[static_cast<std::size_t>(cb_nodes[k])];
+    nodes[k] = {x[0], x[1], x[2]};
+    for (int j = 0; j < 6; ++j) boundary.push_back(6 * cb_nodes[k] + j);
+  }
+  return cb_shaft::from_part(linalg::craig_bampton(km.k, km.m, boundary, cb_modes), nodes);
+}
+
 /// The handles the example reads.
 struct handles {
-  std::vector<std::array<dof, 3>> x;   ///< translations of the shaft nodes 0..8
+  std::vector<std::array<dof, 3>> x;   ///< translations of the shaft nodes 0..8 (absent inner nodes: ground)
   std::vector<rotation_node> r;        ///< rotational nodes of the shaft nodes 0..8
+  std::vector<bool> present;           ///< whether node i is a node of the model (not condensed)
   std::vector<std::array<double, 3>> pos;  ///< their initial positions
   std::array<dof, 3> rod_x{};          ///< translations of the rod's centre of mass
   rotation_node rod_r{};               ///< the rod's rotational node
@@ -155,87 +235,92 @@ struct handles {
   element_ref<gas_force> gas;
 };
 
-/// Builds the crankshaft into m (an empty model) and returns the handles.
-inline handles build(model_type& m, const parameters& P) {
-  const double pi = std::numbers::pi;
+/// Builds the crankshaft into m (an empty model_type, or cb_model_type for the
+/// Craig-Bampton shaft) and returns the handles.
+template <class Model>
+handles build(Model& m, const parameters& P) {
+  constexpr bool cb = std::is_same_v<Model, cb_model_type>;
+  static_assert(cb || std::is_same_v<Model, model_type>, "crankshaft::build: model_type or cb_model_type");
   handles h;
   const double r = P.r;
-  h.pos = {{0, 0, 0}, {0.05, 0, 0}, {0.08, 0, 0}, {0.08, r, 0}, {0.10, r, 0},
-           {0.12, r, 0}, {0.12, 0, 0}, {0.15, 0, 0}, {0.22, 0, 0}};
+  h.pos = shaft_positions(P);
+  const dof G = m.ground();
   for (std::size_t i = 0; i < h.pos.size(); ++i) {
+    const bool present = !cb || std::find(cb_nodes.begin(), cb_nodes.end(), static_cast<int>(i)) != cb_nodes.end();
+    h.present.push_back(present);
+    if (!present) {
+      h.x.push_back({G, G, G});
+      h.r.push_back(rotation_node{});
+      continue;
+    }
     const auto d = m.add_dofs(3, "x" + std::to_string(i));
     h.x.push_back({d[0], d[1], d[2]});
     h.r.push_back(m.add_rotation_node("r" + std::to_string(i)));
   }
-  const dof G = m.ground();
-  // Sections: round a (diameter d): A = pi d^2/4, I = pi d^4/64, J = 2 I;
-  // the web (b along Z, t along X, length along Y): local y axis = global X.
-  struct section { double a, iy, iz, j; double vx, vy, vz; };
-  auto round = [&](double d) {
-    const double a = pi * d * d / 4, i = pi * d * d * d * d / 64;
-    return section{a, i, i, 2 * i, 0, 1, 0};
-  };
-  const double b = P.web_b, t = P.web_t;
-  // Web along Y, local y = X (thickness t), local z = x_local x y_local = Y x X = -Z (width b).
-  // Iy (about local y = X, bending in the plane of local x and z) = t b^3/12, Iz = b t^3/12,
-  // J of a thin-ish rectangle: b t^3/3 (1 - 0.63 t/b).
-  const section web{b * t, t * b * b * b / 12, b * t * t * t / 12, b * t * t * t / 3 * (1 - 0.63 * t / b), 1, 0, 0};
-  const section journal = round(P.d_journal), pin = round(P.d_pin);
-  const std::array<std::pair<int, section>, 8> seg{{{0, journal}, {1, journal}, {2, web}, {3, pin},
-                                                    {4, pin}, {5, web}, {6, journal}, {7, journal}}};
-  for (const auto& [i, s] : seg) {
-    const auto& A = h.pos[static_cast<std::size_t>(i)];
-    const auto& B = h.pos[static_cast<std::size_t>(i + 1)];
-    const auto& xa = h.x[static_cast<std::size_t>(i)];
-    const auto& xb = h.x[static_cast<std::size_t>(i + 1)];
-    const auto ra = h.r[static_cast<std::size_t>(i)], rb = h.r[static_cast<std::size_t>(i + 1)];
-    const std::string n = std::to_string(i) + std::to_string(i + 1);
-    m.add<elastic_beam>("beam" + n, {P.e, P.g, s.a, s.iy, s.iz, s.j, A[0], A[1], A[2], B[0], B[1], B[2], s.vx, s.vy, s.vz},
-                        xa[0], xa[1], xa[2], ra, xb[0], xb[1], xb[2], rb);
-    m.add<beam_inertia>("mass" + n, {P.rho, s.a, s.iy, s.iz, s.iy + s.iz, A[0], A[1], A[2], B[0], B[1], B[2], s.vx, s.vy, s.vz},
-                        xa[0], xa[1], xa[2], ra, xb[0], xb[1], xb[2], rb);
+  if constexpr (cb) {
+    const auto& x = h.x;
+    const auto& q = h.r;
+    m.template add<cb_shaft>("shaft", cb_shaft_parameters(P), x[0][0], x[0][1], x[0][2], q[0], x[1][0], x[1][1], x[1][2],
+                             q[1], x[4][0], x[4][1], x[4][2], q[4], x[7][0], x[7][1], x[7][2], q[7], x[8][0], x[8][1],
+                             x[8][2], q[8]);
+  } else {
+    for (const shaft_segment& s : shaft_segments(P)) {
+      const auto i = static_cast<std::size_t>(s.i);
+      const auto& A = h.pos[i];
+      const auto& B = h.pos[i + 1];
+      const auto& xa = h.x[i];
+      const auto& xb = h.x[i + 1];
+      const auto ra = h.r[i], rb = h.r[i + 1];
+      const std::string n = std::to_string(i) + std::to_string(i + 1);
+      m.template add<elastic_beam>("beam" + n,
+                                   {P.e, P.g, s.a, s.iy, s.iz, s.j, A[0], A[1], A[2], B[0], B[1], B[2], s.vx, s.vy, s.vz},
+                                   xa[0], xa[1], xa[2], ra, xb[0], xb[1], xb[2], rb);
+      m.template add<beam_inertia>(
+          "mass" + n, {P.rho, s.a, s.iy, s.iz, s.iy + s.iz, A[0], A[1], A[2], B[0], B[1], B[2], s.vx, s.vy, s.vz}, xa[0],
+          xa[1], xa[2], ra, xb[0], xb[1], xb[2], rb);
+    }
   }
   // Main bearings at the journals 1 and 7: ground point at the journal's initial position.
   for (int i : {1, 7}) {
     const auto& p = h.pos[static_cast<std::size_t>(i)];
     const auto& x = h.x[static_cast<std::size_t>(i)];
-    const auto ref = m.add<spherical_joint>("bearing" + std::to_string(i == 1 ? 1 : 2),
+    const auto ref = m.template add<spherical_joint>("bearing" + std::to_string(i == 1 ? 1 : 2),
                                             {{p[0], p[1], p[2], 0, 0, 0, p[0], p[1], p[2], 0, 0, 0}, P.k_bearing, P.c_bearing},
                                             G, G, G, G, G, G, x[0], x[1], x[2], h.r[static_cast<std::size_t>(i)]);
     (i == 1 ? h.bearing1 : h.bearing2) = ref;
   }
   // Flywheel and pulley (centres of mass on the nodes).
-  m.add<rigid_body>("flywheel", {P.m_fly, P.j_fly, P.j_fly_d, P.j_fly_d, 0, 0, 0, 0, 0, 0}, h.x[8][0], h.x[8][1], h.x[8][2], h.r[8]);
-  m.add<rigid_body>("pulley", {P.m_pulley, P.j_pulley, P.j_pulley_d, P.j_pulley_d, 0, 0, 0, 0, 0, 0}, h.x[0][0], h.x[0][1],
+  m.template add<rigid_body>("flywheel", {P.m_fly, P.j_fly, P.j_fly_d, P.j_fly_d, 0, 0, 0, 0, 0, 0}, h.x[8][0], h.x[8][1], h.x[8][2], h.r[8]);
+  m.template add<rigid_body>("pulley", {P.m_pulley, P.j_pulley, P.j_pulley_d, P.j_pulley_d, 0, 0, 0, 0, 0, 0}, h.x[0][0], h.x[0][1],
                     h.x[0][2], h.r[0]);
   // Connecting rod: reference point = centre of mass at (0.10, r + l/2, 0), axis along Y.
   const auto xr = m.add_dofs(3, "rod");
   const rotation_node rr = m.add_rotation_node("rodq");
   const double xc = 0.10, yc = r + P.l / 2;
-  m.add<rigid_body>("rod", {P.m_rod, P.j_rod, P.j_rod_axis, P.j_rod, 0, 0, 0, 0, 0, 0}, xr[0], xr[1], xr[2], rr);
+  m.template add<rigid_body>("rod", {P.m_rod, P.j_rod, P.j_rod_axis, P.j_rod, 0, 0, 0, 0, 0, 0}, xr[0], xr[1], xr[2], rr);
   h.rod_x = {xr[0], xr[1], xr[2]};
   h.rod_r = rr;
   h.rod_pos = {xc, yc, 0};
   // Big end: crank pin node 4 (a) and the rod point -l/2 along body Y (b).
-  h.big_end = m.add<spherical_joint>("big_end", {{0.10, r, 0, 0, 0, 0, xc, yc, 0, 0, -P.l / 2, 0}, P.k_pin, P.c_pin}, h.x[4][0],
+  h.big_end = m.template add<spherical_joint>("big_end", {{0.10, r, 0, 0, 0, 0, xc, yc, 0, 0, -P.l / 2, 0}, P.k_pin, P.c_pin}, h.x[4][0],
                          h.x[4][1], h.x[4][2], h.r[4], xr[0], xr[1], xr[2], rr);
   // Piston: only its Y translation is free (cylinder walls and its fixed orientation on the ground).
   h.py = m.add_dof("piston");
-  m.add<point_mass>("piston_mass", {P.m_piston}, h.py);
-  m.add<spherical_joint>("small_end", {{xc, yc, 0, 0, P.l / 2, 0, xc, r + P.l, 0, 0, 0, 0}, P.k_pin, P.c_pin}, xr[0],
+  m.template add<point_mass>("piston_mass", {P.m_piston}, h.py);
+  m.template add<spherical_joint>("small_end", {{xc, yc, 0, 0, P.l / 2, 0, xc, r + P.l, 0, 0, 0, 0}, P.k_pin, P.c_pin}, xr[0],
                          xr[1], xr[2], rr, G, h.py, G, G, G, G);
-  h.gas = m.add<gas_force>("gas", {P.p_peak, P.piston_area(), P.s_w, P.t_ignition}, h.py);
+  h.gas = m.template add<gas_force>("gas", {P.p_peak, P.piston_area(), P.s_w, P.t_ignition}, h.py);
   // Drive: VSRC quarter sine on phi, SHC3 to the flywheel node.
   h.phi = m.add_dof("phi");
-  m.add<velocity_source>("speed", {P.w_end, 1 / (4 * P.t_run), 0, 0}, h.phi);
-  h.drive = m.add<shaft_coupling>("drive", {1, 0, 0, P.k_drive, P.c_drive, 0}, h.phi, h.r[8]);
+  m.template add<velocity_source>("speed", {P.w_end, 1 / (4 * P.t_run), 0, 0}, h.phi);
+  h.drive = m.template add<shaft_coupling>("drive", {1, 0, 0, P.k_drive, P.c_drive, 0}, h.phi, h.r[8]);
   // Camshaft: SHC3 from the pulley node to the camshaft angle, inertia and viscous resistance.
   h.cam = m.add_dof("cam");
-  h.camshaft = m.add<shaft_coupling>("cam_drive", {1, 0, 0, P.k_cam, P.c_cam_coupling, 0}, h.cam, h.r[0]);
-  m.add<point_mass>("cam_inertia", {P.j_cam}, h.cam);
-  m.add<linear_damper>("cam_resistance", {P.c_cam}, h.cam, G);
+  h.camshaft = m.template add<shaft_coupling>("cam_drive", {1, 0, 0, P.k_cam, P.c_cam_coupling, 0}, h.cam, h.r[0]);
+  m.template add<point_mass>("cam_inertia", {P.j_cam}, h.cam);
+  m.template add<linear_damper>("cam_resistance", {P.c_cam}, h.cam, G);
   // Belt: constant lateral pull on the pulley.
-  m.add<spatial_force>("belt", {0, 0, -P.belt_force, 0, 0, 0, 0, 0}, h.x[0][0], h.x[0][1], h.x[0][2]);
+  m.template add<spatial_force>("belt", {0, 0, -P.belt_force, 0, 0, 0, 0, 0}, h.x[0][0], h.x[0][1], h.x[0][2]);
   return h;
 }
 

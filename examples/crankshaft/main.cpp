@@ -10,9 +10,10 @@
 // (<dir>/vtk/crankshaft.pvd: shaft nodes and beams, rod, piston; open it in
 // ParaView) and, unless --no-plot, a plot (PNG, with gnuplot).
 //
-// Usage: crankshaft [output-directory] [--no-plot] [--quick] [--no-gas]
+// Usage: crankshaft [output-directory] [--no-plot] [--quick] [--no-gas] [--cb]
 //        (--quick: the first 0.04 s of the run-up, for the ctest smoke run;
-//         --no-gas: without the gas force, to see the inertia forces alone)
+//         --no-gas: without the gas force, to see the inertia forces alone;
+//         --cb: the shaft as one Craig-Bampton body, FLEX3, instead of the beams)
 
 #include <algorithm>
 #include <array>
@@ -24,6 +25,7 @@
 #include <iostream>
 #include <numbers>
 #include <string>
+#include <type_traits>
 
 #include "crankshaft_model.hpp"
 #include "pradis/integrators/simulation.hpp"
@@ -31,26 +33,16 @@
 #include "pradis/io/vtk_series.hpp"
 #include "pradis/spatial/node_state.hpp"
 
-int main(int argc, char** argv) try {
-  using namespace pradis;
-  std::string dir = "out";
-  bool plot = true, quick = false, gas = true;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--no-plot") plot = false;
-    else if (a == "--quick") quick = true;
-    else if (a == "--no-gas") gas = false;
-    else if (a == "--help" || a == "-h") {
-      std::cout << "usage: crankshaft [output-directory] [--no-plot] [--quick] [--no-gas]\n";
-      return 0;
-    } else dir = a;
-  }
-  std::filesystem::create_directories(dir);
+namespace {
 
+/// Runs the example on a model of type Model (crankshaft::model_type or cb_model_type).
+template <class Model>
+int run(const std::string& dir, bool plot, bool quick, bool gas) {
+  using namespace pradis;
   const double pi = std::numbers::pi, rpm = 60 / (2 * pi);
   crankshaft::parameters P;
   if (!gas) P.p_peak = 0;
-  crankshaft::model_type m;
+  Model m;
   const crankshaft::handles h = crankshaft::build(m, P);
   const double y_tdc = P.r + P.l;  // piston pin at top dead centre
 
@@ -60,7 +52,8 @@ int main(int argc, char** argv) try {
   io::vtk_scene scene;
   std::vector<int> node;
   for (std::size_t i = 0; i < h.pos.size(); ++i)
-    node.push_back(scene.body_point({h.pos[i][0], h.pos[i][1], h.pos[i][2]}, h.x[i], h.r[i], spatial::vec3::Zero()));
+    if (h.present[i])  // with --cb the inner nodes are condensed: the line joins the boundary nodes
+      node.push_back(scene.body_point({h.pos[i][0], h.pos[i][1], h.pos[i][2]}, h.x[i], h.r[i], spatial::vec3::Zero()));
   for (std::size_t i = 0; i + 1 < node.size(); ++i) scene.line(node[i], node[i + 1]);
   const spatial::vec3 rod0(h.rod_pos[0], h.rod_pos[1], h.rod_pos[2]);
   const int big = scene.body_point(rod0, h.rod_x, h.rod_r, {0, -P.l / 2, 0});
@@ -102,6 +95,10 @@ int main(int argc, char** argv) try {
   out.write_csv(csv);
   const auto& st = sim.statistics();
   std::cout << "crankshaft: " << out.rows() << " output rows to " << csv << "\n"
+            << "shaft: "
+            << (std::is_same_v<Model, crankshaft::cb_model_type> ? "one Craig-Bampton body (FLEX3, 5 boundary nodes, 6 modes)"
+                                                                 : "8 BEAM3 + BEAMI3")
+            << "\n"
             << "animation: " << vtk.frames() << " frames, " << vtk.collection().string() << " (ParaView)\n"
             << "simulated " << end << " s (run-up to " << P.w_end * rpm * std::sin(pi / 2 * end / P.t_run)
             << " rev/min), step " << step << " s, " << m.dof_count() << " DOFs\n"
@@ -142,6 +139,26 @@ int main(int argc, char** argv) try {
                 << "of " << csv << " against column 2)\n";
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  std::string dir = "out";
+  bool plot = true, quick = false, gas = true, cb = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--no-plot") plot = false;
+    else if (a == "--quick") quick = true;
+    else if (a == "--no-gas") gas = false;
+    else if (a == "--cb") cb = true;
+    else if (a == "--help" || a == "-h") {
+      std::cout << "usage: crankshaft [output-directory] [--no-plot] [--quick] [--no-gas] [--cb]\n";
+      return 0;
+    } else dir = a;
+  }
+  std::filesystem::create_directories(dir);
+  return cb ? run<crankshaft::cb_model_type>(dir, plot, quick, gas) : run<crankshaft::model_type>(dir, plot, quick, gas);
 } catch (const pradis::error& e) {
   std::cerr << e.what() << "\n";
   return 1;

@@ -6,10 +6,13 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
 #include <sstream>
+#include <vector>
 
 #include "../elements/element_test_support.hpp"
 #include "crankshaft/crankshaft_model.hpp"
@@ -94,5 +97,63 @@ TEST_SUITE("examples/crankshaft") {
     CHECK(std::abs(w2[3] / (-0.5 * P.belt_force) - 1) < 1e-3);
     CHECK(std::abs(g1 / (1.5 * P.belt_force / P.k_bearing) - 1) < 1e-3);
     CHECK(std::abs(g2 / (0.5 * P.belt_force / P.k_bearing) - 1) < 1e-3);
+  }
+}
+
+// The shaft as one Craig-Bampton body (FLEX3 on the pulley, bearing, crank-pin and flywheel
+// nodes, 6 fixed-interface modes of the inner nodes; crankshaft::cb_model_type) against the
+// eight BEAM3 + BEAMI3 it is reduced from: the same statics on two supports (Guyan
+// condensation keeps the static stiffness at the boundary exactly) and, in the run-up, the
+// same bearing runout to a small fraction of its peak (the reduction drops the inner nodes'
+// higher modes; the body turns with one frame where each BEAM3 has its own).
+TEST_SUITE("examples/crankshaft") {
+  TEST_CASE("crankshaft at rest with the Craig-Bampton shaft: the belt pull loads the bearings as on the beams") {
+    crankshaft::parameters P;
+    P.w_end = 0;
+    P.p_peak = 0;
+    crankshaft::cb_model_type m;
+    const auto h = crankshaft::build(m, P);
+    CHECK(m.dof_count() < 60);  // 5 nodes and 6 modes instead of 9 nodes
+    simulation<crankshaft::cb_model_type, generalized_alpha> sim(m, generalized_alpha(0.0));
+    sim.run({.end = 0.05, .smax = 1e-3});
+    const auto w1 = m.work(h.bearing1), w2 = m.work(h.bearing2);
+    CHECK(std::abs(w1[3] / (1.5 * P.belt_force) - 1) < 1e-3);
+    CHECK(std::abs(w2[3] / (-0.5 * P.belt_force) - 1) < 1e-3);
+    CHECK(std::abs(w1[0] / (1.5 * P.belt_force / P.k_bearing) - 1) < 1e-3);
+    CHECK(std::abs(w2[0] / (0.5 * P.belt_force / P.k_bearing) - 1) < 1e-3);
+  }
+
+  TEST_CASE("crankshaft run-up, first 30 ms: the Craig-Bampton shaft's bearing runout follows the BEAM3 shaft's") {
+    const crankshaft::parameters P;
+    // Runout of both main journals at every step (h = 0.1 ms, as the example).
+    const auto runouts = [&P](auto& m) {
+      const auto h = crankshaft::build(m, P);
+      simulation sim(m);
+      std::vector<std::array<double, 2>> out;
+      sim.on_output([&](const auto& s) {
+        const auto r = [&](int i) {
+          const auto& x = h.x[static_cast<std::size_t>(i)];
+          return std::hypot(s.u(x[1]), s.u(x[2]));
+        };
+        out.push_back({r(1), r(7)});
+      });
+      sim.run({.end = 0.03, .out = 0, .smax = 1e-4});
+      return out;
+    };
+    crankshaft::model_type mb;
+    crankshaft::cb_model_type mc;
+    const auto beams = runouts(mb), cb = runouts(mc);
+    REQUIRE(beams.size() == cb.size());
+    REQUIRE(beams.size() > 250);
+    double peak = 0, diff = 0;
+    for (std::size_t k = 0; k < beams.size(); ++k)
+      for (std::size_t j = 0; j < 2; ++j) {
+        peak = std::max(peak, beams[k][j]);
+        diff = std::max(diff, std::abs(beams[k][j] - cb[k][j]));
+      }
+    MESSAGE("peak runout ", peak * 1e6, " um; largest difference Craig-Bampton - BEAM3 ", diff * 1e6, " um (", diff / peak,
+            " of the peak)");
+    CHECK(peak > 10e-6);
+    CHECK(diff < 1e-3 * peak);
   }
 }

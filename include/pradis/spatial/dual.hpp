@@ -16,6 +16,8 @@ template <class S, int N>
 struct dual {
   S v{};                   ///< value
   std::array<S, N> d{};    ///< derivatives along the seeded directions
+  /// Number of derivative directions.
+  static constexpr int size = N;
 
   dual() = default;
   /// A constant (all derivatives zero).

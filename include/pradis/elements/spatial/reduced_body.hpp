@@ -13,6 +13,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -95,7 +96,8 @@ constexpr auto reduced_body_parameter_text() {
 /// nubar the nodes' velocities and angular velocities in the frame and the modal
 /// rates; the flows are its exact Lagrange equations (gyroscopic and frame terms
 /// included), so a rigid motion is exact for a Guyan part, energy is conserved and
-/// the Jacobian is exact (forward dual numbers on the flows). Not included:
+/// the Jacobian is exact (reduced_body_kernel.hpp: the strain part per node pair with
+/// dual numbers and a material product, the inertia part in closed form). Not included:
 /// geometric stiffening (K is constant in the frame), damping.
 /// The reference configuration has identity nodal quaternions.
 template <int NB, int NM>
@@ -227,24 +229,24 @@ struct reduced_body {
   }
 
   void evaluate(const local_input<reduced_body>& in, local_output<reduced_body>& out, element_context& ctx) const {
-    for (int i = 0; i < NB; ++i) {
-      const spatial::quaternion q = quaternion_of(in.u, i);
-      if (!(q.squaredNorm() > spatial::lq_near_zero * spatial::lq_near_zero))
+    for (int i = 0; i < NB; ++i)
+      if (!(kernel::quat(in.u, i).squaredNorm() > spatial::lq_near_zero * spatial::lq_near_zero))
         ctx.singular("Lq near zero: the quaternion norm |q| has vanished");
-    }
+    out.f.setZero();
     if (!out.want_jacobian) {
-      const auto f = detail::reduced_body_flows_of<double, NB, NM>(state<double>(in, -1), p.k, p.m, p.x0, true);
-      check(f.min_w, ctx);
-      write(f, out.f, ctx);
+      const auto [strain, w] = kernel::elastic(in.u, p.k, p.x0, out.f, nullptr);
+      check(w, ctx);
+      ctx.work[0] = strain;
+      ctx.work[1] = kernel::inertia(in.u, in.v, in.a, p.m, out.f, nullptr, nullptr, nullptr);
       return;
     }
-    using d = spatial::dual<double, n>;
-    const auto fu = detail::reduced_body_flows_of<d, NB, NM>(state<d>(in, 0), p.k, p.m, p.x0, true);
-    check(fu.min_w, ctx);
-    write(fu, out.f, ctx);
-    derivatives(fu, out.K);
-    derivatives(detail::reduced_body_flows_of<d, NB, NM>(state<d>(in, 1), p.k, p.m, p.x0, false), out.C);
-    derivatives(detail::reduced_body_flows_of<d, NB, NM>(state<d>(in, 2), p.k, p.m, p.x0, false), out.M);
+    out.K.setZero();
+    out.C.setZero();
+    out.M.setZero();
+    const auto [strain, w] = kernel::elastic(in.u, p.k, p.x0, out.f, &out.K);
+    check(w, ctx);
+    ctx.work[0] = strain;
+    ctx.work[1] = kernel::inertia(in.u, in.v, in.a, p.m, out.f, &out.K, &out.C, &out.M);
   }
 
   /// States the checks may use: quaternion norms not near zero, every node within
@@ -259,78 +261,14 @@ struct reduced_body {
   }
 
  private:
-  static constexpr int n = 7 * NB + NM;  // local DOFs
+  using kernel = detail::reduced_body_kernel<NB, NM>;
   template <class V>
   static spatial::quaternion quaternion_of(const V& u, int i) {
-    return {u(6 * i + 3), u(6 * i + 4), u(6 * i + 5), u(6 * NB + i)};
-  }
-  /// The state in scalars T; for a dual T, `seed` 0, 1, 2 seeds u, v or a of every local DOF.
-  template <class T>
-  detail::reduced_body_state<T, NB, NM> state(const local_input<reduced_body>& in, int seed) const {
-    const auto var = [seed](int which, double x, int k) {
-      if constexpr (std::is_same_v<T, double>) {
-        (void)which, (void)k;
-        return x;
-      } else {
-        return which == seed ? T::variable(x, k) : T(x);
-      }
-    };
-    detail::reduced_body_state<T, NB, NM> s;
-    for (int i = 0; i < NB; ++i) {
-      const auto b = static_cast<std::size_t>(i);
-      for (int j = 0; j < 3; ++j) {
-        const auto c = static_cast<std::size_t>(j);
-        s.x[b][c] = var(0, p.x0[3 * b + c] + in.u(6 * i + j), 6 * i + j);
-        s.v[b][c] = var(1, in.v(6 * i + j), 6 * i + j);
-        s.a[b][c] = var(2, in.a(6 * i + j), 6 * i + j);
-      }
-      for (int j = 0; j < 4; ++j) {
-        const int k = j < 3 ? 6 * i + 3 + j : 6 * NB + i;
-        const auto c = static_cast<std::size_t>(j);
-        s.q[b][c] = var(0, in.u(k), k);
-        s.qd[b][c] = var(1, in.v(k), k);
-        s.qdd[b][c] = var(2, in.a(k), k);
-      }
-    }
-    for (int j = 0; j < NM; ++j) {
-      const int k = 7 * NB + j;
-      const auto c = static_cast<std::size_t>(j);
-      s.eta[c] = var(0, in.u(k), k);
-      s.etad[c] = var(1, in.v(k), k);
-      s.etadd[c] = var(2, in.a(k), k);
-    }
-    return s;
+    return kernel::quat(u, i);
   }
   /// Code 75 at a relative rotation near 180 degrees.
   static void check(double min_w, element_context& ctx) {
     if (!(min_w > 1e-3)) ctx.singular("a boundary node has turned by 180 degrees relative to node 1 (far beyond small deformation)");
-  }
-  /// The flows' values into f and W(1), W(2).
-  template <class F, class V>
-  static void write(const F& fl, V& f, element_context& ctx) {
-    f.setZero();
-    for (int i = 0; i < NB; ++i)
-      for (int j = 0; j < 3; ++j) {
-        f(6 * i + j) = spatial::value_of(fl.force[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
-        f(6 * i + 3 + j) = spatial::value_of(fl.moment[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
-      }
-    for (int j = 0; j < NM; ++j) f(7 * NB + j) = spatial::value_of(fl.modal[static_cast<std::size_t>(j)]);
-    ctx.work[0] = spatial::value_of(fl.strain);
-    ctx.work[1] = spatial::value_of(fl.kinetic);
-  }
-  /// The flows' derivatives (dual parts) into a Jacobian block.
-  template <class F, class B>
-  static void derivatives(const F& fl, B& blk) {
-    blk.setZero();
-    for (int c = 0; c < n; ++c) {
-      const auto k = static_cast<std::size_t>(c);
-      for (int i = 0; i < NB; ++i)
-        for (int j = 0; j < 3; ++j) {
-          blk(6 * i + j, c) = fl.force[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)].d[k];
-          blk(6 * i + 3 + j, c) = fl.moment[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)].d[k];
-        }
-      for (int j = 0; j < NM; ++j) blk(7 * NB + j, c) = fl.modal[static_cast<std::size_t>(j)].d[k];
-    }
   }
 };
 
