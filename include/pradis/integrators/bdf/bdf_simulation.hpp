@@ -18,7 +18,9 @@
 /// RMS norm over the displacements and the velocities of all free DOFs, with
 /// the weights 1 / (DRLTX |x| + DABSX s) per component, x the value at the
 /// step's start and s the DOF's nominal potential (dof_scale::potential; for a
-/// displacement, the potential times one second). The step and the order
+/// displacement, the potential times one second; the multipliers of index-3
+/// constraints left out, the velocities of their DOFs weighted by min(1, h),
+/// see set_weights()). The step and the order
 /// (1..max_order) follow IDA's rules; the step never exceeds SMAX or an
 /// element's recommended step (unless IGNORE) and ends exactly at every output
 /// time (OUT) and at END.
@@ -267,17 +269,42 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   /// The error weights 1 / (DRLTX |x| + DABSX s) of the displacements and
   /// velocities of the free DOFs at the current state; zero for the multipliers
   /// of index-3 constraints (driver_core::index3_), which the error and
-  /// corrector tests leave out.
-  void set_weights() {
+  /// corrector tests leave out. The velocities of the DOFs an index-3
+  /// constraint acts on (the columns of its row, index2_) are index-2
+  /// components: their weights are multiplied by min(1, h / 1 s), h the step,
+  /// in the Newton and the error test alike, as the code RADAU5 divides the
+  /// tolerances of index-2 components by h (Hairer and Wanner, Solving ODEs II,
+  /// 2nd ed. 1996; radau5.f, routine RADCOR). Any step projects the incoming
+  /// velocity onto the hidden constraint G v = 0, so their unscaled error does
+  /// not shrink with h and small steps were rejected as often as large ones.
+  void set_weights(double h) {
     const int ne = asm_.equations();
     const double dabsx = effective_dabsx(opt_);
+    const double hv = std::min(1.0, h);
     w_.resize(2 * ne);
     for (int i = 0; i < ne; ++i) {
       const auto d = asm_.dof_of(i);
       const double s = m_.scales()[static_cast<std::size_t>(d)].potential;
       const bool skip = static_cast<std::size_t>(d) < index3_.size() && index3_[static_cast<std::size_t>(d)];
+      const bool index2 = static_cast<std::size_t>(i) < index2_.size() && index2_[static_cast<std::size_t>(i)];
       w_(i) = skip ? 0.0 : 1 / (opt_.drltx * std::abs(s_.u(d)) + dabsx * s);
-      w_(ne + i) = skip ? 0.0 : 1 / (opt_.drltx * std::abs(s_.v(d)) + dabsx * s);
+      w_(ne + i) = skip ? 0.0 : (index2 ? hv : 1.0) / (opt_.drltx * std::abs(s_.v(d)) + dabsx * s);
+    }
+  }
+  /// Marks the equations whose DOF appears in the row of an index-3 constraint
+  /// (index2_, by equation).
+  void mark_index2() {
+    const int ne = asm_.equations();
+    index2_.assign(static_cast<std::size_t>(ne), 0);
+    const auto& pat = asm_.pattern();
+    for (int r = 0; r < ne; ++r) {
+      const auto d = static_cast<std::size_t>(asm_.dof_of(r));
+      if (d >= index3_.size() || !index3_[d]) continue;
+      for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
+        const int c = pat.col[static_cast<std::size_t>(q)];
+        const auto dc = static_cast<std::size_t>(asm_.dof_of(c));
+        if (c != r && !(dc < index3_.size() && index3_[dc])) index2_[static_cast<std::size_t>(c)] = 1;
+      }
     }
   }
   /// Starts the history at order 1 from the current state, with IDA's first
@@ -292,8 +319,9 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       yp(i) = s_.v(d);
       yp(ne + i) = s_.a(d);
     }
-    set_weights();
+    mark_index2();
     double h = opt_.smin;
+    set_weights(opt_.error_control ? 0.001 * (opt_.end - t_) : h);
     if (opt_.error_control) {
       h = bopt_.initial_step;
       if (h <= 0) {
@@ -312,7 +340,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   bool attempt() {
     s0_ = s_;
     const double t0 = t_;
-    set_weights();
+    set_weights(hist_.step());
     hist_.set_coefficients();
     const double h = hist_.step(), c = hist_.c();
     t_ = t0 + h;
@@ -422,6 +450,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   Eigen::VectorXd y_p_, yp_p_, w_, e_, dy_;
   double c_jac_ = 0;  // c of the kept factorisation
   double ss_ = 20;    // IDA's rate / (1 - rate) estimate for the first Newton correction
+  std::vector<char> index2_;  // by equation: a DOF of an index-3 constraint's row (mark_index2)
   int nef_ = 0, ncf_ = 0;
   bool jac_valid_ = false;
 };
