@@ -42,11 +42,13 @@ void mechanism_spinning_top(benchmark::State& state) {
 }
 BENCHMARK(mechanism_spinning_top)->ArgName("ms")->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 
-void mechanism_crankshaft(benchmark::State& state) {
+/// Simulates `ms` milliseconds of the crankshaft on a model of type Model per iteration.
+template <class Model>
+void crankshaft_run(benchmark::State& state) {
   const double end = static_cast<double>(state.range(0)) * 1e-3;
   long steps = 0;
   for (auto _ : state) {
-    crankshaft::model_type m;
+    Model m;
     const auto h = crankshaft::build(m, crankshaft::parameters{});
     pradis::simulation sim(m);
     const auto st = sim.run({.end = end, .out = 0, .smax = 1e-4});
@@ -57,45 +59,19 @@ void mechanism_crankshaft(benchmark::State& state) {
       benchmark::Counter(end * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["steps_per_s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
 }
-BENCHMARK(mechanism_crankshaft)->ArgName("ms")->Arg(5)->Arg(100)->Unit(benchmark::kMillisecond);
 
-/// Peak runout of the two main journals at every step of a crankshaft run of `end` seconds.
-template <class Model>
-std::vector<std::array<double, 2>> crankshaft_runouts(double end) {
-  Model m;
-  const auto h = crankshaft::build(m, crankshaft::parameters{});
-  pradis::simulation sim(m);
-  std::vector<std::array<double, 2>> out;
-  sim.on_output([&](const auto& s) {
-    const auto r = [&](int i) {
-      const auto& x = h.x[static_cast<std::size_t>(i)];
-      return std::hypot(s.u(x[1]), s.u(x[2]));
-    };
-    out.push_back({r(1), r(7)});
-  });
-  sim.run({.end = end, .out = 0, .smax = 1e-4});
-  return out;
-}
+void mechanism_crankshaft(benchmark::State& state) { crankshaft_run<crankshaft::model_type>(state); }
+BENCHMARK(mechanism_crankshaft)->ArgName("ms")->Arg(5)->Arg(100)->Unit(benchmark::kMillisecond);
 
 // The same crankshaft with the shaft as one Craig-Bampton body (FLEX3 on 5 boundary nodes, 6 modes;
 // crankshaft::cb_model_type). Counters as above, and runout_difference: the largest difference of the
 // bearing runout from the BEAM3 shaft's over the run, relative to the peak runout (computed once,
 // outside the timing).
 void mechanism_crankshaft_cb(benchmark::State& state) {
+  crankshaft_run<crankshaft::cb_model_type>(state);
   const double end = static_cast<double>(state.range(0)) * 1e-3;
-  long steps = 0;
-  for (auto _ : state) {
-    crankshaft::cb_model_type m;
-    const auto h = crankshaft::build(m, crankshaft::parameters{});
-    pradis::simulation sim(m);
-    const auto st = sim.run({.end = end, .out = 0, .smax = 1e-4});
-    steps += st.steps;
-    benchmark::DoNotOptimize(sim.u(h.py));
-  }
-  state.counters["cpu_per_simulated_s"] =
-      benchmark::Counter(end * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-  state.counters["steps_per_s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
-  const auto beams = crankshaft_runouts<crankshaft::model_type>(end), cb = crankshaft_runouts<crankshaft::cb_model_type>(end);
+  const auto beams = crankshaft::bearing_runouts<crankshaft::model_type>(end),
+             cb = crankshaft::bearing_runouts<crankshaft::cb_model_type>(end);
   double peak = 0, diff = 0;
   for (std::size_t k = 0; k < std::min(beams.size(), cb.size()); ++k)
     for (std::size_t j = 0; j < 2; ++j) {

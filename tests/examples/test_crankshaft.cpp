@@ -124,25 +124,8 @@ TEST_SUITE("examples/crankshaft") {
   }
 
   TEST_CASE("crankshaft run-up, first 30 ms: the Craig-Bampton shaft's bearing runout follows the BEAM3 shaft's") {
-    const crankshaft::parameters P;
-    // Runout of both main journals at every step (h = 0.1 ms, as the example).
-    const auto runouts = [&P](auto& m) {
-      const auto h = crankshaft::build(m, P);
-      simulation sim(m);
-      std::vector<std::array<double, 2>> out;
-      sim.on_output([&](const auto& s) {
-        const auto r = [&](int i) {
-          const auto& x = h.x[static_cast<std::size_t>(i)];
-          return std::hypot(s.u(x[1]), s.u(x[2]));
-        };
-        out.push_back({r(1), r(7)});
-      });
-      sim.run({.end = 0.03, .out = 0, .smax = 1e-4});
-      return out;
-    };
-    crankshaft::model_type mb;
-    crankshaft::cb_model_type mc;
-    const auto beams = runouts(mb), cb = runouts(mc);
+    const auto beams = crankshaft::bearing_runouts<crankshaft::model_type>(0.03),
+               cb = crankshaft::bearing_runouts<crankshaft::cb_model_type>(0.03);
     REQUIRE(beams.size() == cb.size());
     REQUIRE(beams.size() > 250);
     double peak = 0, diff = 0;
