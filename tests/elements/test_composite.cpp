@@ -1,16 +1,19 @@
-// Composite super-elements (elements/composite.hpp) and the crank throw THROW. References: the PRADIS element
-// developer's manual (an element may call other elements as a sub-model, with SYSPRN = 0 muting their
-// messages); the invariant that a super-element kept without condensation is the same set of nodal equations
+// Composite super-elements (elements/composite.hpp) and the crank throws THROW and THROWP. References: the
+// PRADIS element developer's manual (an element may call other elements as a sub-model, with SYSPRN = 0 muting
+// their messages); the invariant that a super-element kept without condensation is the same set of nodal equations
 // as the expanded model of its parts (docs/super-elements.md).
 
 #include <doctest/doctest.h>
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <type_traits>
 #include <vector>
 
 #include "element_test_support.hpp"
@@ -90,42 +93,67 @@ struct own_context {
   }
 };
 
-/// Local DOFs of THROW's nodes, written out by hand (crank_throw.hpp): x, y, z, q1, q2, q3 and the hidden q4
-/// of A, N1, N2, N3, B.
+/// Local DOFs of a throw's nodes, written out by hand (crank_throw.hpp): x, y, z, q1, q2, q3 and the hidden q4
+/// of A, N1, N2 (THROWP's external P), N3, B; whether N2 is external.
 struct node_dofs {
   int x, q1, q4;
 };
-constexpr std::array<node_dofs, 5> throw_nodes{{{0, 3, 12}, {14, 17, 20}, {21, 24, 27}, {28, 31, 34}, {6, 9, 13}}};
-/// The local DOF list of a beam from node a to node b (BEAM3's order).
+template <class T>
+struct throw_layout;
+template <>
+struct throw_layout<crank_throw> {
+  static constexpr std::array<node_dofs, 5> nodes{{{0, 3, 12}, {14, 17, 20}, {21, 24, 27}, {28, 31, 34}, {6, 9, 13}}};
+  static constexpr bool pin_external = false;
+};
+template <>
+struct throw_layout<crank_throw_pin> {
+  static constexpr std::array<node_dofs, 5> nodes{{{0, 3, 18}, {21, 24, 27}, {12, 15, 20}, {28, 31, 34}, {6, 9, 19}}};
+  static constexpr bool pin_external = true;
+};
+constexpr const auto& throw_nodes = throw_layout<crank_throw>::nodes;
+/// The local DOF list of a beam of throw T from node a to node b (BEAM3's order).
+template <class T>
 std::array<int, 14> beam_dofs(int a, int b) {
-  const auto& na = throw_nodes[static_cast<std::size_t>(a)];
-  const auto& nb = throw_nodes[static_cast<std::size_t>(b)];
+  const auto& na = throw_layout<T>::nodes[static_cast<std::size_t>(a)];
+  const auto& nb = throw_layout<T>::nodes[static_cast<std::size_t>(b)];
   return {na.x,     na.x + 1, na.x + 2, na.q1,     na.q1 + 1, na.q1 + 2, nb.x,
           nb.x + 1, nb.x + 2, nb.q1,    nb.q1 + 1, nb.q1 + 2, na.q4,     nb.q4};
 }
 
-/// The expanded model: the same 4 BEAM3 + 4 BEAMI3 on explicit nodes, the DOFs created in the order THROW's
-/// placement creates them (A, B, then N1, N2, N3).
-template <class M>
-struct throw_scene {
-  M m;
-  std::vector<dof> xa, xb;
-  rotation_node ra, rb;
+using scene_model = model<elastic_beam, beam_inertia, crank_throw, crank_throw_pin, spatial_force, spatial_torque>;
+
+/// A throw's external nodes in a model: A on the ground (clamped), B, and for THROWP the middle of the pin P.
+struct throw_ends {
+  std::vector<dof> xb, xp;
+  rotation_node rb, rp;
+  /// A's, B's (and P's) DOFs in the order of the throw's external DOFs.
+  std::vector<dof> dofs(dof ground) const {
+    std::vector<dof> d{ground, ground, ground, ground, ground, ground, xb[0], xb[1], xb[2], rb.q1, rb.q2, rb.q3};
+    if (!xp.empty()) d.insert(d.end(), {xp[0], xp[1], xp[2], rp.q1, rp.q2, rp.q3});
+    return d;
+  }
 };
 
-template <class M>
-void add_loads(M& m, const std::vector<dof>& xb, rotation_node rb) {
-  // A force at B across the throw and a torque about the shaft axis, both suddenly applied.
-  m.template add<spatial_force>("force", {0, -3000, 2000, 0, 0, 0, 0, 0}, xb[0], xb[1], xb[2]);
-  m.template add<spatial_torque>("torque", {40, 0, 0, 0, 0, 0, 0, 0}, rb);
+/// Creates B, and P if throw T has it external (the expanded model creates them first as well, so that both
+/// number the DOFs alike).
+template <class T>
+throw_ends make_ends(scene_model& m) {
+  throw_ends e;
+  e.xb = m.add_dofs(3, "xb");
+  e.rb = m.add_rotation_node("rb");
+  if (throw_layout<T>::pin_external) {
+    e.xp = m.add_dofs(3, "xp");
+    e.rp = m.add_rotation_node("rp");
+  }
+  return e;
 }
 
-using scene_model = model<elastic_beam, beam_inertia, crank_throw, spatial_force, spatial_torque>;
-
-/// Clamps A (translations and rotations on the ground) and creates B.
-void make_ends(scene_model& m, std::vector<dof>& xb, rotation_node& rb) {
-  xb = m.add_dofs(3, "xb");
-  rb = m.add_rotation_node("rb");
+/// A force at B across the throw and a torque about the shaft axis, and for THROWP a force at P, all suddenly
+/// applied.
+void add_loads(scene_model& m, const throw_ends& e) {
+  m.add<spatial_force>("force", {0, -3000, 2000, 0, 0, 0, 0, 0}, e.xb[0], e.xb[1], e.xb[2]);
+  m.add<spatial_torque>("torque", {40, 0, 0, 0, 0, 0, 0, 0}, e.rb);
+  if (!e.xp.empty()) m.add<spatial_force>("pin force", {1000, 4000, -1500, 0, 0, 0, 0, 0}, e.xp[0], e.xp[1], e.xp[2]);
 }
 
 }  // namespace
@@ -155,12 +183,40 @@ TEST_SUITE("elements/composite") {
     CHECK(pars.find("116 - part 8 'BEAMI3' (rear web mass), its parameter 14:") != std::string::npos);
   }
 
-  TEST_CASE("THROW's flows and Jacobian are the sum of its parts' (assembled by hand) at random states") {
+  TEST_CASE("the passport of THROWP is derived from its parts: THROW's with the middle of the pin external") {
+    using tp = crank_throw_pin;
+    constexpr passport p = tp::passport;
+    static_assert(p.ext == 18 && p.ent == 17);  // A, B, P; the q4 of A, B, P, and N1, N3 with 7 DOFs each
+    static_assert(p.par == 4 * 15 + 4 * 14 && p.par == throw_t::passport.par);
+    static_assert(p.wrk == throw_t::passport.wrk && p.str == 0 && p.adr == 1 && p.ign == 0);
+    // A, N1, P, N3, B: P's q1..q3 external (15..17) with its q4 at 20, N1 and N3 inner nodes.
+    static_assert(tp::rotation_nodes.size() == 5);
+    static_assert(tp::rotation_nodes[0] == rotation_slot{3, 18});
+    static_assert(tp::rotation_nodes[1] == rotation_slot{24, 27});
+    static_assert(tp::rotation_nodes[2] == rotation_slot{15, 20});
+    static_assert(tp::rotation_nodes[3] == rotation_slot{31, 34});
+    static_assert(tp::rotation_nodes[4] == rotation_slot{9, 19});
+    static_assert(std::tuple_size_v<decltype(tp::parameters::parts)> == 8);
+    CHECK(help_lines(tp::help.parameters) == p.par);
+    CHECK(help_lines(tp::help.dofs) == p.ext);
+    CHECK(help_lines(tp::help.work) == p.wrk);
+    CHECK(std::string(tp::help.parameters) == std::string(throw_t::help.parameters));  // the same parts
+    // P's DOFs are described by the first part on them, the pin's front piece (its end B).
+    const std::string dofs(tp::help.dofs);
+    CHECK(dofs.find("13 - translation of end B along X [m] (part 3 'BEAM3' (pin front), its DOF 7)") !=
+          std::string::npos);
+    CHECK(dofs.find("18 - q3 of end B (flow: moment about Z) [-] (part 3 'BEAM3' (pin front), its DOF 12)") !=
+          std::string::npos);
+  }
+
+  TEST_CASE_TEMPLATE("a throw's flows and Jacobian are the sum of its parts' (assembled by hand) at random states", T,
+                     crank_throw, crank_throw_pin) {
     // The composite adds the parts' flows and blocks into zeroed arrays in part order; adding them here in
     // the same order gives the same numbers bit for bit.
+    constexpr int n = element_traits<T>::n;
     const auto pp = crank_throw_parts();
-    throw_t t(throw_t::parameters{pp});
-    own_context<throw_t> c("t");
+    T t(typename T::parameters{pp});
+    own_context<T> c("t");
     t.new_integration(c.ctx);
     const elastic_beam b1(std::get<0>(pp)), b2(std::get<2>(pp)), b3(std::get<4>(pp)), b4(std::get<6>(pp));
     const beam_inertia i1(std::get<1>(pp)), i2(std::get<3>(pp)), i3(std::get<5>(pp)), i4(std::get<7>(pp));
@@ -168,21 +224,21 @@ TEST_SUITE("elements/composite") {
     std::uniform_real_distribution<double> uni(-1.0, 1.0);
     int checked = 0;
     for (int trial = 0; trial < 50; ++trial) {
-      local_input<throw_t> in;
-      for (int k = 0; k < n_throw; ++k) {
+      local_input<T> in;
+      for (int k = 0; k < n; ++k) {
         in.u(k) = 1e-3 * uni(rng);
         in.v(k) = uni(rng);
         in.a(k) = 100 * uni(rng);
       }
-      for (const auto& nd : throw_nodes) in.u(nd.q4) = 1.0 + 0.1 * uni(rng);  // quaternions near identity
+      for (const auto& nd : throw_layout<T>::nodes) in.u(nd.q4) = 1.0 + 0.1 * uni(rng);  // quaternions near identity
       if (!t.admissible(in)) continue;
       ++checked;
-      local_output<throw_t> out;
+      local_output<T> out;
       t.evaluate(in, out, c.ctx);
-      Eigen::Matrix<double, n_throw, 1> f = Eigen::Matrix<double, n_throw, 1>::Zero();
-      Eigen::Matrix<double, n_throw, n_throw> K = decltype(K)::Zero(), C = decltype(C)::Zero(), M = decltype(M)::Zero();
+      Eigen::Matrix<double, n, 1> f = Eigen::Matrix<double, n, 1>::Zero();
+      Eigen::Matrix<double, n, n> K = decltype(K)::Zero(), C = decltype(C)::Zero(), M = decltype(M)::Zero();
       const auto add = [&]<class E>(const E& e, int a, int b) {
-        const auto d = beam_dofs(a, b);
+        const auto d = beam_dofs<T>(a, b);
         local_input<E> li;
         for (int k = 0; k < 14; ++k) {
           li.u(k) = in.u(d[static_cast<std::size_t>(k)]);
@@ -215,11 +271,12 @@ TEST_SUITE("elements/composite") {
       CHECK((out.M - M).cwiseAbs().maxCoeff() == 0.0);
     }
     CHECK(checked >= 40);
-    CHECK(c.work[static_cast<std::size_t>(throw_t::stats)] == checked);  // the evaluation count
+    CHECK(c.work[static_cast<std::size_t>(T::stats)] == checked);  // the evaluation count
   }
 
-  TEST_CASE("a THROW moves as the expanded model of its BEAM3 and BEAMI3 parts, to round-off, and draws the "
-            "same animation scene") {
+  TEST_CASE_TEMPLATE("a THROW (THROWP) moves as the expanded model of its BEAM3 and BEAMI3 parts, to round-off, and "
+                     "draws the same animation scene",
+                     T, crank_throw, crank_throw_pin) {
     // Same equations, same DOF numbering (the expanded model creates its DOFs in the order THROW's placement
     // creates its internal ones), same integrator (Newmark, the default) and the same 200 steps of 1e-5 s (no
     // step cut in either run: the Newton tolerances are tight but reachable, three iterations a step). Only
@@ -229,23 +286,36 @@ TEST_SUITE("elements/composite") {
     // 1e-5 s: ~1e4) and 200 steps accumulate. The tolerance is that round-off floor measured on the problem
     // itself: the expanded model with its elements placed in reverse order (a different summation order,
     // nothing else) differs from the forward one by 5e-12 of the largest motion; THROW must differ by no more
-    // than twice that (measured: 4e-12), and the hidden q4 (near 1) by round-off relative to 1.
+    // than twice that (measured: 4e-12), and the hidden q4 (near 1) by round-off relative to 1. THROWP carries
+    // in addition a force at its external P, which the expanded model applies to the same DOFs, the middle node
+    // of the pin (measured: 2e-12 with a reordering floor of 3e-12).
     const auto pp = crank_throw_parts();
+    constexpr bool pin_external = throw_layout<T>::pin_external;
     enum { expanded, reversed, as_throw };
     const auto run = [&](int mode) {
       scene_model m;
       const dof G = m.ground();
-      std::vector<dof> xb;
-      rotation_node rb;
-      make_ends(m, xb, rb);
+      const throw_ends ends = make_ends<T>(m);
+      const std::vector<dof>& xb = ends.xb;
+      const rotation_node rb = ends.rb;
       const rotation_node ga = m.add_rotation_node("ra", G, G, G);
       (void)ga;
       if (mode == as_throw) {
-        m.add<crank_throw>("throw", {pp}, G, G, G, G, G, G, xb[0], xb[1], xb[2], rb);
+        if constexpr (pin_external)
+          m.add<T>("throw", {pp}, G, G, G, G, G, G, xb[0], xb[1], xb[2], rb, ends.xp[0], ends.xp[1], ends.xp[2],
+                   ends.rp);
+        else
+          m.add<T>("throw", {pp}, G, G, G, G, G, G, xb[0], xb[1], xb[2], rb);
       } else {
+        // The inner nodes, created in the order the throw's placement creates them; THROWP's P is external.
         std::array<std::vector<dof>, 3> xi;
         std::array<rotation_node, 3> ri;
         for (std::size_t i = 0; i < 3; ++i) {
+          if (pin_external && i == 1) {
+            xi[i] = ends.xp;
+            ri[i] = ends.rp;
+            continue;
+          }
           xi[i] = m.add_dofs(3, "n" + std::to_string(i + 1));
           ri[i] = m.add_rotation_node("rn" + std::to_string(i + 1));
         }
@@ -272,7 +342,7 @@ TEST_SUITE("elements/composite") {
         }
         (std::make_index_sequence<8>{});
       }
-      add_loads(m, xb, rb);
+      add_loads(m, ends);
       simulation sim(m);
       const auto st = sim.run(
           {.end = 2e-3, .smax = 1e-5, .newton = {.dabsu = 1e-9, .drltu = 0, .dabsi = 1e-5, .drlti = 0, .itr = 10}});
@@ -306,8 +376,10 @@ TEST_SUITE("elements/composite") {
       dthrow = std::max(dthrow, std::abs(ue[d] - uc[d]));
       dreversed = std::max(dreversed, std::abs(ue[d] - ur[d]));
     }
-    INFO("max |u| = ", umax, ", difference THROW - expanded ", dthrow, ", reversed - expanded ", dreversed,
-         ", on the hidden q4 ", dq4);
+    INFO(T::passport.name, ": max |u| = ", umax, ", difference to the expanded model ", dthrow,
+         ", reversed - expanded ", dreversed, ", on the hidden q4 ", dq4);
+    MESSAGE(T::passport.name, ": max |u| = ", umax, ", difference to the expanded model ", dthrow,
+            ", reversed - expanded ", dreversed, ", on the hidden q4 ", dq4);
     CHECK(umax > 1e-5);  // the throw did move
     // Round-off, and no more than a mere reordering of the expanded model's sums gives.
     CHECK(dreversed > 0);
@@ -328,6 +400,69 @@ TEST_SUITE("elements/composite") {
     (void)pr;
     (void)cr;
     (void)tr;
+  }
+
+  TEST_CASE("THROWP clamped at A and B under a force at the middle of the pin deflects as linear beam theory says") {
+    // Reference: the throw is a portal frame in its plane, two clamped columns (the webs, height h = r) and a
+    // beam (the pin, span L), here loaded by F along Y at mid-span P. BEAM3 is Euler-Bernoulli with axial strain,
+    // and THROWP's tangent at the undeformed state is that linear frame's stiffness (rotations as q = theta / 2
+    // with q4 = 1: a scaling of the rotational unknowns, which leaves the translations alone). Beam theory by
+    // Castigliano's theorem: cut at P, by symmetry each half (the clamped L A -> N1 -> P) carries V = F / 2 at P,
+    // and P neither moves along the pin nor rotates; with the unknown axial force H and moment M at P, the
+    // half's energy U = int M^2 / (2 EI) ds + int N^2 / (2 EA) ds, in the pin M(x) = M + V (a - x), N = H
+    // (a = L / 2), in the web M(s) = M + a V - s H, N = V (s from the corner), gives from dU/dM = 0 and
+    // dU/dH = 0 the equations below, and the deflection of P is dU/dV.
+    using tp = crank_throw_pin;
+    constexpr auto& nodes = throw_layout<tp>::nodes;
+    struct shape {
+      double r, length;
+    };
+    for (const shape sh : {shape{0.04, 0.04}, shape{0.1, 0.3}}) {
+      CAPTURE(sh.r);
+      CAPTURE(sh.length);
+      const auto pp = crank_throw_parts(0.08, sh.r, sh.length);
+      tp t(tp::parameters{pp});
+      own_context<tp> c("throw");
+      t.new_integration(c.ctx);
+      local_input<tp> in;
+      for (const auto& nd : nodes) in.u(nd.q4) = 1.0;
+      local_output<tp> out;
+      out.want_jacobian = true;
+      t.evaluate(in, out, c.ctx);
+      CHECK(out.f.cwiseAbs().maxCoeff() == 0.0);  // the undeformed state is free of stress
+      // The free DOFs: x, y, z, q1, q2, q3 of P, N1, N3 (A and B clamped, the q4 held at 1).
+      std::array<int, 18> fr{};
+      std::size_t k = 0;
+      for (const std::size_t i : {2u, 1u, 3u})
+        for (int j = 0; j < 3; ++j) {
+          fr[k++] = nodes[i].x + j;
+          fr[k++] = nodes[i].q1 + j;
+        }
+      Eigen::Matrix<double, 18, 18> kf;
+      for (int i = 0; i < 18; ++i)
+        for (int j = 0; j < 18; ++j) kf(i, j) = out.K(fr[static_cast<std::size_t>(i)], fr[static_cast<std::size_t>(j)]);
+      const double F = 1000;
+      Eigen::Matrix<double, 18, 1> rhs = Eigen::Matrix<double, 18, 1>::Zero();
+      rhs(2) = F;  // P's y (fr: P x, P q1, P y, ...)
+      const Eigen::Matrix<double, 18, 1> u = kf.fullPivLu().solve(rhs);
+      // Beam theory. Bending in the throw's plane: about Z, the pin's Iz and the web's (b t^3 / 12).
+      const auto& web = std::get<0>(pp);
+      const auto& pin = std::get<2>(pp);
+      const double a = sh.length / 2, h = sh.r, V = F / 2;
+      const double eip = pin.e * pin.iz, eap = pin.e * pin.a, eiw = web.e * web.iz, eaw = web.e * web.a;
+      // dU/dM = 0: M (a / EIp + h / EIw) - H h^2 / (2 EIw) = -V (a^2 / (2 EIp) + a h / EIw);
+      // dU/dH = 0: -M h^2 / (2 EIw) + H (h^3 / (3 EIw) + a / EAp) = V a h^2 / (2 EIw).
+      const double m11 = a / eip + h / eiw, m12 = -h * h / (2 * eiw), m22 = h * h * h / (3 * eiw) + a / eap;
+      const double r1 = -V * (a * a / (2 * eip) + a * h / eiw), r2 = V * a * h * h / (2 * eiw);
+      const double det = m11 * m22 - m12 * m12;
+      const double M = (r1 * m22 - m12 * r2) / det, H = (m11 * r2 - m12 * r1) / det;
+      const double deflection =
+          (M * a * a / 2 + V * a * a * a / 3) / eip + a * ((M + a * V) * h - H * h * h / 2) / eiw + V * h / eaw;
+      INFO("deflection of P ", u(2), ", beam theory ", deflection);
+      CHECK(u(2) == doctest::Approx(deflection).epsilon(1e-10));
+      // Symmetry: P moves along Y only, and does not rotate.
+      for (const int i : {0, 1, 3, 4, 5}) CHECK(std::abs(u(i)) <= 1e-12 * std::abs(u(2)));
+    }
   }
 
   TEST_CASE("a part's error names the super-element, its instance and the part, with the part's code") {
@@ -407,13 +542,12 @@ TEST_SUITE("elements/composite") {
     }
   }
 
-  TEST_CASE("THROW from the flat parameter vector: a wrong count is code 101, a bad value code 100 naming the part") {
+  TEST_CASE_TEMPLATE("THROW (THROWP) from the flat parameter vector: a wrong count is code 101, a bad value code 100 "
+                     "naming the part",
+                     T, crank_throw, crank_throw_pin) {
+    const std::string name(T::passport.name);
     scene_model m;
-    const dof G = m.ground();
-    std::vector<dof> xb;
-    rotation_node rb;
-    make_ends(m, xb, rb);
-    const std::vector<dof> d{G, G, G, G, G, G, xb[0], xb[1], xb[2], rb.q1, rb.q2, rb.q3};
+    const std::vector<dof> d = make_ends<T>(m).dofs(m.ground());
     std::vector<double> flat;
     const auto put = [&](const auto& p) {
       if constexpr (std::is_same_v<std::remove_cvref_t<decltype(p)>, elastic_beam::parameters>)
@@ -425,12 +559,12 @@ TEST_SUITE("elements/composite") {
     std::apply([&](const auto&... p) { (put(p), ...); }, crank_throw_parts());
     REQUIRE(flat.size() == 116);
     const std::vector<double> short_list(flat.begin(), flat.end() - 1);
-    check_error(pradis_element_tests::flat_add_error<crank_throw>(m, "short", d, short_list),
-                error_code::parameter_count, "THROW", "short", "got 115 parameters");
+    check_error(pradis_element_tests::flat_add_error<T>(m, "short", d, short_list), error_code::parameter_count,
+                name, "short", "got 115 parameters");
     flat[58 + 2] = 0.0;  // part 5 (pin rear, BEAM3), its parameter 3: the area
-    m.add_flat<crank_throw>("bad", d, flat);
+    m.add_flat<T>("bad", d, flat);
     simulation sim(m);
-    check_error(error_from([&] { sim.run({.end = 1e-4, .smax = 1e-5}); }), error_code::invalid_parameter, "THROW",
-                "bad", "part 5 'BEAM3' (pin rear), parameters 59..73 of THROW: area A = 0 must be > 0");
+    check_error(error_from([&] { sim.run({.end = 1e-4, .smax = 1e-5}); }), error_code::invalid_parameter, name, "bad",
+                "part 5 'BEAM3' (pin rear), parameters 59..73 of " + name + ": area A = 0 must be > 0");
   }
 }

@@ -79,9 +79,10 @@ using spatial_connector_elements =
 /// against another sphere (docs/contact.md).
 using spatial_contact_elements = type_list<sphere_plane_contact, sphere_sphere_contact>;
 /// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md), the
-/// crank throw super-element made of them (docs/super-elements.md), and the reduced elastic
-/// body FLEX3 with two boundary nodes and two modes (docs/reduction.md).
-using beam_elements = type_list<elastic_beam, beam_inertia, crank_throw, reduced_body_2x2>;
+/// crank throw super-elements made of them (THROW, and THROWP with the middle of the pin
+/// external; docs/super-elements.md), and the reduced elastic body FLEX3 with two boundary
+/// nodes and two modes (docs/reduction.md).
+using beam_elements = type_list<elastic_beam, beam_inertia, crank_throw, crank_throw_pin, reduced_body_2x2>;
 /// Plates: the 12-DOF triangle plate with side rotations (docs/plates.md).
 using plate_elements = type_list<triangle_plate>;
 /// Hydraulics (docs/domains.md): pressure is the velocity-level unknown, volume flow the flow.
