@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "../../bench/spun_bar.hpp"
 #include "lang_test_support.hpp"
 #include "pradis/elements/spatial/beam_matrices.hpp"
 #include "pradis/io/matrix_market.hpp"
@@ -16,13 +17,9 @@ using namespace pradis;
 using lang_test::memory_loader;
 
 namespace {
-// The steel beam of examples/models/flex_cantilever_{k,m}.mtx (their comment lines).
-constexpr double cb_side = 0.02, cb_e = 2.1e11, cb_i = cb_side * cb_side * cb_side * cb_side / 12;
-elements::beam_matrices cb_steel_beam() {
-  return elements::straight_beam_matrices({cb_e, 8.1e10, cb_side * cb_side, cb_i, cb_i, 0.1406 * cb_i * 12, 7850,
-                                           2 * cb_i},
-                                          {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 8);
-}
+// The steel beam of examples/models/flex_cantilever_{k,m}.mtx (their comment lines):
+// the spun bar's section, 1 m, 8 elements.
+elements::beam_matrices cb_steel_beam() { return spun_bar::bar_matrices(8); }
 
 // The Matrix Market text of `a` (symmetric), through io::write_matrix_market.
 std::string cb_mtx_text(const Eigen::MatrixXd& a, const std::string& tag) {
@@ -39,17 +36,17 @@ std::map<std::string, std::string> cb_files() {
 
 // The cantilever of flex_cantilever.prd with `call` as its Beam definition.
 std::string cb_model(const std::string& call) {
-  return "$DATA\n"
-         "  Beam = " + call + "\n"
-         "$FRAGMENT\n"
-         "#STRUCTURE\n"
-         "  Cantilever 'FLEX3 (0 0 0 0 0 0 1 2 3 4 5 6; 0, 0, 0, 1, 0, 0, Beam)\n"
-         "  Tip load 'F (2; 1)\n"
-         "#OUTPUT\n"
-         "  Tip Y 'X (2; 1)\n"
-         "$RUN\n"
-         "  Calc 'NEWMARK (END=0.01, OUT=1E-3, SMAX=1E-3)\n"
-         "$END\n";
+  return "$DATA\n  Beam = " + call + R"(
+$FRAGMENT
+#STRUCTURE
+  Cantilever 'FLEX3 (0 0 0 0 0 0 1 2 3 4 5 6; 0, 0, 0, 1, 0, 0, Beam)
+  Tip load 'F (2; 1)
+#OUTPUT
+  Tip Y 'X (2; 1)
+$RUN
+  Calc 'NEWMARK (END=0.01, OUT=1E-3, SMAX=1E-3)
+$END
+)";
 }
 const std::string cb_ends = "1, 2, 3, 4, 5, 6, 49, 50, 51, 52, 53, 54";
 
@@ -101,7 +98,7 @@ TEST_SUITE("lang/CRAIGBAMPTON") {
     s->run({.write_files = false});
     const auto& t = s->results();
     const std::size_t last = t.rows() - 1;
-    const double p = 1, l = 1, ei = cb_e * cb_i;
+    const double p = 1, l = 1, ei = spun_bar::steel.e * spun_bar::steel.iz;
     const double d = p * l * l * l / (3 * ei), phi = p * l * l / (2 * ei);
     const double q3 = t.at(last, lang_test::column(t, "Tip q3")), lq = t.at(last, lang_test::column(t, "Tip norm"));
     // The Guyan part is the exact static condensation; the corotational frame adds
