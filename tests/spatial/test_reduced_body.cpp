@@ -32,6 +32,7 @@
 #include "pradis/elements/spatial/reduced_body.hpp"
 #include "pradis/testing/jacobian_check.hpp"
 #include "spatial_test_support.hpp"
+#include "../../bench/spun_bar.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
@@ -40,27 +41,6 @@ using pradis_element_tests::check_error;
 using pradis_element_tests::error_from;
 
 namespace {
-/// A steel bar of 20 mm x 20 mm, 1 m long (free-free first bending frequency about 106 Hz).
-constexpr beam_section flex_steel{.e = 2.1e11,
-                                  .g = 8.1e10,
-                                  .a = 4e-4,
-                                  .iy = 0.02 * 0.02 * 0.02 * 0.02 / 12,
-                                  .iz = 0.02 * 0.02 * 0.02 * 0.02 / 12,
-                                  .j = 2.25e-8,
-                                  .rho = 7850,
-                                  .ip = 2 * 0.02 * 0.02 * 0.02 * 0.02 / 12};
-constexpr int flex_elements = 10;
-
-/// The bar from the origin along X reduced to its two ends and nm modes.
-template <int NM>
-typename reduced_body<2, NM>::parameters flex_bar(double length = 1.0) {
-  const beam_matrices bm = straight_beam_matrices(flex_steel, {0, 0, 0}, {length, 0, 0}, {0, 1, 0}, flex_elements);
-  std::vector<int> b;
-  for (int j = 0; j < 6; ++j) b.push_back(j);
-  for (int j = 0; j < 6; ++j) b.push_back(6 * flex_elements + j);
-  return reduced_body<2, NM>::from_part(linalg::craig_bampton(bm.k, bm.m, b, NM), {vec3::Zero(), vec3(length, 0, 0)});
-}
-
 /// Evaluates E at `in` (flows and, with `jac`, the blocks) after its NEWINT check.
 template <class E>
 local_output<E> flex_eval(const E& e, const local_input<E>& in, std::array<double, 2>& work) {
@@ -80,71 +60,6 @@ void flex_set_node(local_input<E>& in, int nb, int i, const vec3& displacement, 
   in.u(6 * nb + i) = q(3);
 }
 
-/// One sample of a spun bar: time, the tip's deflection across the bar in the root's frame, the root's angle.
-struct flex_sample {
-  double t = 0, deflection = 0, angle = 0;
-};
-
-/// The driving torque about Z at the root: M0 (1 - cos(2 pi f t)), f = 5 Hz (smooth start, far below the bar's modes).
-spatial_torque::parameters flex_drive(double m0) { return {0, 0, m0, 0, 0, -m0, 5.0, 90}; }
-
-/// Newton tolerances below the accuracy compared (flows of the bar up to ~1e3 N).
-constexpr newton_options flex_newton{.dabsu = 1e-10, .drltu = 0, .dabsi = 1e-6, .drlti = 0, .itr = 10};
-
-template <class Sim>
-flex_sample flex_sample_of(const Sim& sim, const std::vector<dof>& root, rotation_node r0, const std::vector<dof>& tip) {
-  const vec3 c(1.0 + sim.u(tip[0]) - sim.u(root[0]), sim.u(tip[1]) - sim.u(root[1]), sim.u(tip[2]) - sim.u(root[2]));
-  const vec3 local = node_rotation(sim, r0).transpose() * c;
-  const quaternion q = node_quaternion(sim, r0);
-  return {sim.time(), local(1), 2 * std::atan2(q(2), q(3))};
-}
-
-/// The spun bar as one FLEX3 (ends and 4 modes): samples every 10 ms up to `end`.
-std::vector<flex_sample> flex_spin_reduced(double m0, double end, double h) {
-  model<reduced_body<2, 4>, spatial_torque> m;
-  const auto x0 = m.add_dofs(3, "x0");
-  const auto r0 = m.add_rotation_node("r0");
-  const auto x1 = m.add_dofs(3, "x1");
-  const auto r1 = m.add_rotation_node("r1");
-  m.add<reduced_body<2, 4>>("bar", flex_bar<4>(), x0[0], x0[1], x0[2], r0, x1[0], x1[1], x1[2], r1);
-  m.add<spatial_torque>("drive", flex_drive(m0), r0);
-  simulation sim(m);
-  std::vector<flex_sample> out;
-  for (int k = 1; k * 0.01 <= end + 1e-12; ++k) {
-    sim.run({.end = k * 0.01, .smax = h, .smin = h / 64, .newton = flex_newton});
-    out.push_back(flex_sample_of(sim, x0, r0, x1));
-  }
-  return out;
-}
-
-/// The spun bar as 10 BEAM3 + BEAMI3.
-std::vector<flex_sample> flex_spin_beams(double m0, double end, double h) {
-  model<elastic_beam, beam_inertia, spatial_torque> m;
-  std::vector<std::vector<dof>> x;
-  std::vector<rotation_node> r;
-  for (int i = 0; i <= flex_elements; ++i) {
-    x.push_back(m.add_dofs(3, "x" + std::to_string(i)));
-    r.push_back(m.add_rotation_node("r" + std::to_string(i)));
-  }
-  const double le = 1.0 / flex_elements;
-  const beam_section& s = flex_steel;
-  for (std::size_t i = 0; i < flex_elements; ++i) {
-    const double xa = static_cast<double>(i) * le, xb = xa + le;
-    const auto &a = x[i], &b = x[i + 1];
-    m.add<elastic_beam>("b" + std::to_string(i), {s.e, s.g, s.a, s.iy, s.iz, s.j, xa, 0, 0, xb, 0, 0, 0, 1, 0}, a[0], a[1],
-                        a[2], r[i], b[0], b[1], b[2], r[i + 1]);
-    m.add<beam_inertia>("m" + std::to_string(i), {s.rho, s.a, s.iy, s.iz, s.ip, xa, 0, 0, xb, 0, 0, 0, 1, 0}, a[0], a[1],
-                        a[2], r[i], b[0], b[1], b[2], r[i + 1]);
-  }
-  m.add<spatial_torque>("drive", flex_drive(m0), r[0]);
-  simulation sim(m);
-  std::vector<flex_sample> out;
-  for (int k = 1; k * 0.01 <= end + 1e-12; ++k) {
-    sim.run({.end = k * 0.01, .smax = h, .smin = h / 64, .newton = flex_newton});
-    out.push_back(flex_sample_of(sim, x[0], r[0], x[flex_elements]));
-  }
-  return out;
-}
 }  // namespace
 
 TEST_SUITE("spatial/reduced_body") {
@@ -271,8 +186,8 @@ TEST_SUITE("spatial/reduced_body") {
 
   TEST_CASE("FLEX3: a Guyan cantilever carries the exact tip deflection P L^3 / (3 E I), turned and moved as a whole") {
     using E = reduced_body<2, 0>;
-    const E e(flex_bar<0>());
-    const double p = 50.0, l = 1.0, ei = flex_steel.e * flex_steel.iz;
+    const E e(spun_bar::reduced_bar<0>(10));
+    const double p = 50.0, l = 1.0, ei = spun_bar::steel.e * spun_bar::steel.iz;
     const double delta = p * l * l * l / (3 * ei), slope = p * l * l / (2 * ei);
     const quaternion q0 = from_axis_angle(vec3(-0.2, 0.9, 0.4).normalized(), 2.7);
     const mat3 r = rotation_matrix(q0);
@@ -297,22 +212,20 @@ TEST_SUITE("spatial/reduced_body") {
     const double h = 2.5e-4, end = 0.3;
     double rel_low = 0, rel_high = 0;
     for (double m0 : {5.0, 20.0}) {
-      const auto beams = flex_spin_beams(m0, end, h);
-      const auto flex = flex_spin_reduced(m0, end, h);
+      const auto beams = spun_bar::spin_beams(m0, end, h, 10);
+      const auto flex = spun_bar::spin_reduced<4>(m0, end, h, 10);
       REQUIRE(beams.size() == flex.size());
-      double peak = 0, diff = 0, angle_diff = 0;
-      for (std::size_t i = 0; i < beams.size(); ++i) {
-        peak = std::max(peak, std::abs(beams[i].deflection));
-        diff = std::max(diff, std::abs(beams[i].deflection - flex[i].deflection));
+      double angle_diff = 0;
+      for (std::size_t i = 0; i < beams.size(); ++i)
         angle_diff = std::max(angle_diff, std::abs(beams[i].angle - flex[i].angle));
-      }
+      const double rel = spun_bar::deflection_difference(beams, flex);
       const double spin = (beams.back().angle - beams[beams.size() - 2].angle) / 0.01;
       MESSAGE("M0 = ", m0, " N m: root turned by ", beams.back().angle, " rad, spin ~", spin,
-              " rad/s; peak tip deflection ", peak, " m; largest difference ", diff, " m (", diff / peak,
-              " of the peak); root angle difference ", angle_diff, " rad");
+              " rad/s; largest tip deflection difference ", rel, " of the peak; root angle difference ", angle_diff,
+              " rad");
       CHECK(beams.back().angle > 0.8);     // large overall motion
       CHECK(angle_diff < 1e-4 * beams.back().angle);
-      (m0 < 10 ? rel_low : rel_high) = diff / peak;
+      (m0 < 10 ? rel_low : rel_high) = rel;
     }
     CHECK(rel_low < 1e-3);
     // Four times the torque, four times the spin: the relative difference grows about 16-fold, as the
@@ -356,7 +269,7 @@ TEST_SUITE("spatial/reduced_body") {
       simulation sim(m);
       return error_from([&] { sim.run({.end = 0.01, .smax = 0.001}); });
     };
-    const E::parameters ok = flex_bar<0>();
+    const E::parameters ok = spun_bar::reduced_bar<0>(10);
     CHECK_FALSE(run(ok).has_value());
     E::parameters bad = ok;
     bad.x0[4] = pradis_element_tests::not_a_number;
@@ -378,7 +291,7 @@ TEST_SUITE("spatial/reduced_body") {
     bad.k.setZero();
     check_error(run(bad), error_code::invalid_parameter, "FLEX3", "bar", "all boundary nodes are at one point");
     // A part of another size.
-    const beam_matrices bm = straight_beam_matrices(flex_steel, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 2);
+    const beam_matrices bm = straight_beam_matrices(spun_bar::steel, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 2);
     const auto wrong = error_from([&] {
       (void)E::from_part(linalg::craig_bampton(bm.k, bm.m, {0, 1, 2, 3, 4, 5, 12, 13, 14, 15, 16, 17}, 1),
                          {vec3::Zero(), vec3::UnitX()});

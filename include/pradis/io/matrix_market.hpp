@@ -56,8 +56,10 @@ inline std::string mm_lower(std::string_view s) {
 
 /// Parses the Matrix Market text `text` (named `file` in messages) into a dense
 /// matrix; a symmetric file gives the full symmetric matrix. Throws
-/// table_csv_error (code io_error) at the first defect (see the file comment).
-inline Eigen::MatrixXd parse_matrix_market(std::string_view text, const std::string& file) {
+/// table_csv_error (code io_error) at the first defect (see the file comment),
+/// also for more than `max_size` rows or columns (dense storage: the default
+/// 1e5 is already 80 GB).
+inline Eigen::MatrixXd parse_matrix_market(std::string_view text, const std::string& file, long max_size = 100000) {
   std::vector<std::string_view> lines;
   for (std::size_t b = 0; b <= text.size();) {
     std::size_t e = text.find('\n', b);
@@ -110,9 +112,8 @@ inline Eigen::MatrixXd parse_matrix_market(std::string_view text, const std::str
   const auto sw = detail::mm_words(lines[static_cast<std::size_t>(size_line - 1)]);
   if (sw.size() != (coordinate ? 3u : 2u))
     fail(size_line, 1, coordinate ? "the size line must be 'rows columns entries'" : "the size line must be 'rows columns'");
-  const long big = 100000;  // dense storage: at most 1e5 rows and columns
-  const long rows = index(size_line, sw[0], big, "the row count");
-  const long cols = index(size_line, sw[1], big, "the column count");
+  const long rows = index(size_line, sw[0], max_size, "the row count");
+  const long cols = index(size_line, sw[1], max_size, "the column count");
   if (symmetric && rows != cols) fail(size_line, 1, "a symmetric matrix must be square");
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, cols);
   if (coordinate) {

@@ -6,42 +6,17 @@
 
 #include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <functional>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "pradis/lang/ast.hpp"
+#include "pradis/lang/data_files.hpp"
 #include "pradis/lang/lexer.hpp"
-#include "pradis/lang/table_file.hpp"
 
 namespace pradis::lang {
-
-/// Reads an included file by its (resolved) path; nothing if it cannot be read.
-using file_loader = std::function<std::optional<std::string>(const std::string& path)>;
-
-/// Reads a file from disk (binary, whole); nothing if it cannot be read (errno
-/// then tells why).
-inline std::optional<std::string> read_file(const std::string& path) {
-  errno = 0;
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return std::nullopt;
-  std::ostringstream os;
-  os << f.rdbuf();
-  if (f.bad()) return std::nullopt;
-  return os.str();
-}
-
-/// ": <the system's reason>" for the last failed file operation (errno), or "".
-inline std::string os_reason() {
-  const int e = errno;
-  return e == 0 ? std::string() : std::string(": ") + std::strerror(e);
-}
 
 /// Section keywords, for suggestions.
 inline const std::vector<std::string>& section_names() {
@@ -155,8 +130,9 @@ class parser {
       ++p_;  // '='
       for (;;) {
         if (at_statement_end()) fail(cur().loc, "expected a value after '=' or ',', found " + describe(cur()));
-        if (at(tok::word) && upper(cur().text) == "FILE" && next().kind == tok::lparen)
-          file_values(d.values);
+        if (at(tok::word) && next().kind == tok::lparen &&
+            (upper(cur().text) == "FILE" || upper(cur().text) == "CRAIGBAMPTON"))
+          function_values(d.values);
         else
           d.values.push_back(value());
         if (at(tok::comma)) {
@@ -171,23 +147,49 @@ class parser {
     }
   }
 
-  /// `FILE("table.csv")` in a value list: the numbers of a two-column table file
-  /// (io::parse_table_csv), x1, y1, x2, y2, ..., each located at FILE. The path
-  /// is relative to this model file; errors in the table point into it.
-  void file_values(std::vector<ast::item>& out) {
+  /// `FILE("table.csv")` or `CRAIGBAMPTON("k.mtx", "m.mtx", modes, dof, ...)` in a
+  /// value list (data_files.hpp): their numbers, each located at the call. Paths
+  /// are relative to this model file; errors in a data file point into it.
+  void function_values(std::vector<ast::item>& out) {
     const location where = cur().loc;
-    p_ += 2;  // FILE (
-    if (!at(tok::string))
-      fail(cur().loc, "FILE needs a file name in double quotes, FILE(\"table.csv\"), found " + describe(cur()));
-    const std::string path = cur().text;
-    const location path_loc = cur().loc;
+    const std::string name = upper(cur().text);
+    const bool table = name == "FILE";
+    const std::size_t nfiles = table ? 1 : 2;
+    p_ += 2;  // NAME (
+    std::vector<data_file> files;
+    std::vector<ast::item> numbers;
+    for (;;) {
+      if (files.size() < nfiles) {
+        if (!at(tok::string))
+          fail(cur().loc, name + " needs " + (table ? "a file name" : "two file names") + " in double quotes, " +
+                              (table ? "FILE(\"table.csv\")" : "CRAIGBAMPTON(\"k.mtx\", \"m.mtx\", modes, dof, ...)") +
+                              ", found " + describe(cur()));
+        data_file f;
+        f.loc = cur().loc;
+        if (cur().text.empty()) fail(f.loc, name + " with an empty file name");
+        f.text = *load_relative(cur().text, f.name, f.loc, table ? "table file" : "matrix file");
+        ++p_;
+        files.push_back(std::move(f));
+      } else {
+        const ast::item v = value();
+        if (v.what != ast::item::kind::number)
+          fail(v.loc, name + " takes numbers after its file names, not a $DATA name: '" + v.text + "'");
+        numbers.push_back(v);
+      }
+      if (table || !at(tok::comma)) break;
+      ++p_;
+      skip_newlines();  // a long DOF list may continue on the next line
+    }
+    if (!at(tok::rparen))
+      fail(cur().loc, std::string("expected ") + (table ? "')' after the file name of FILE" : "',' or ')' in CRAIGBAMPTON") +
+                          ", found " + describe(cur()));
     ++p_;
-    if (!at(tok::rparen)) fail(cur().loc, "expected ')' after the file name of FILE, found " + describe(cur()));
-    ++p_;
-    if (path.empty()) fail(path_loc, "FILE with an empty file name");
-    std::string resolved;
-    std::optional<std::string> text = load_relative(path, resolved, path_loc, "table file");
-    table_file_items(std::move(*text), resolved, where, path_loc, out);
+    if (files.size() < nfiles)
+      fail(where, "CRAIGBAMPTON needs two matrix files: CRAIGBAMPTON(\"k.mtx\", \"m.mtx\", modes, dof, dof, ...)");
+    if (table)
+      table_file_items(files[0], where, out);
+    else
+      craig_bampton_items(files[0], files[1], numbers, where, out);
   }
 
   void fragment_section(const token& t) {

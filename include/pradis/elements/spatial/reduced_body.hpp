@@ -119,7 +119,9 @@ struct reduced_body {
   static constexpr element_help help{
       .title = "reduced elastic body (Guyan / Craig-Bampton) in large spatial motion",
       .name = "Linear elastic part given by its reduced stiffness and mass, corotational in the floating frame of "
-              "its first boundary node, with internal modal coordinates",
+              "its first boundary node, with internal modal coordinates; in a model file, K and M of a finite "
+              "element model are read from Matrix Market files and reduced by CRAIGBAMPTON(\"k.mtx\", \"m.mtx\", "
+              "modes, dof, ...) in $DATA, which gives the parameters after the positions (docs/reduction.md)",
       .field = "mechanics, spatial motion, flexible bodies",
       .dofs = dof_text.view(),
       .parameters = parameter_text.view(),
