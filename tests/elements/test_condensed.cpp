@@ -1,0 +1,412 @@
+// Condensed super-elements (elements/condensed.hpp): a composite whose internal DOFs are eliminated inside the element
+// by nonlinear static condensation. References: springs in series have the stiffness k1 k2 / (k1 + k2) (Hooke's law,
+// equal force in both springs); static (Guyan) condensation of a linear element is exact for its massless internal DOFs
+// (R. J. Guyan, "Reduction of stiffness and mass matrices", AIAA J. 3 (1965) 380); the invariant that the condensed
+// element is the composite with its internal equations solved, so a model with it moves as the model with the composite
+// kept (docs/super-elements.md).
+
+#include <doctest/doctest.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <initializer_list>
+#include <random>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <vector>
+
+#include "element_test_support.hpp"
+#include "pradis/elements/condensed.hpp"
+#include "pradis/testing/jacobian_check.hpp"
+
+using namespace pradis;
+using namespace pradis::elements;
+using pradis_element_tests::check_error;
+using pradis_element_tests::error_from;
+using pradis_element_tests::fixed_step;
+using pradis_element_tests::jacobian_passes;
+
+namespace {
+
+// ---- condensed elements of the tests ----------------------------------------------
+
+/// Two springs in series, the point between them internal (composite DOF 3).
+struct series_spec {
+  static constexpr std::string_view name = "SPRING2C";
+  static constexpr std::string_view title = "two linear springs in series, the middle point condensed";
+  static constexpr int ext = 2, ent = 1;
+  static constexpr std::array<std::string_view, 2> labels{"left spring", "right spring"};
+};
+using series_kept = composite<series_spec, part<linear_spring, 0, 2>, part<linear_spring, 2, 1>>;
+using series = condensed<series_spec, part<linear_spring, 0, 2>, part<linear_spring, 2, 1>>;
+
+/// Three LINKD from the external points P1, P2, P3 (DOFs 1..6) to the internal centre C (DOFs 7, 8): a geometrically
+/// nonlinear star whose centre is condensed.
+struct star_spec {
+  static constexpr std::string_view name = "STAR3";
+  static constexpr std::string_view title = "three elastic links meeting at a condensed centre";
+  static constexpr int ext = 6, ent = 2;
+  static std::tuple<planar_link::parameters, planar_link::parameters, planar_link::parameters> example() {
+    return {{0, 0, 1, 0.7, 1e3}, {2, 0, 1, 0.7, 2e3}, {1, 2, 1, 0.7, 1.5e3}};
+  }
+};
+struct star_kept_spec : star_spec {
+  static constexpr std::string_view name = "STAR3K";
+};
+using star_kept = composite<star_kept_spec, part<planar_link, 0, 1, 6, 7>, part<planar_link, 2, 3, 6, 7>,
+                            part<planar_link, 4, 5, 6, 7>>;
+using star =
+    condensed<star_spec, part<planar_link, 0, 1, 6, 7>, part<planar_link, 2, 3, 6, 7>, part<planar_link, 4, 5, 6, 7>>;
+
+/// A BEAM3 between the external spatial nodes A (DOFs 1..6) and B (7..12) and, beside it, two springs in series from
+/// A's x to B's x through the condensed DOF 16; 13 and 14 are the hidden q4 of A and B, which stay (the condensed
+/// element's two internal DOFs).
+struct beam_spec {
+  static constexpr std::string_view name = "BEAMS2C";
+  static constexpr std::string_view title = "a beam with two springs in series beside it";
+  static constexpr int ext = 12, ent = 3;
+};
+using beam_parts_kept = composite<beam_spec, part<elastic_beam, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13>,
+                                  part<linear_spring, 0, 14>, part<linear_spring, 14, 6>>;
+using beam_parts = condensed<beam_spec, part<elastic_beam, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13>,
+                             part<linear_spring, 0, 14>, part<linear_spring, 14, 6>>;
+/// The same beam with the two springs replaced by one of their series stiffness.
+struct beam1_spec {
+  static constexpr std::string_view name = "BEAMS1";
+  static constexpr std::string_view title = "a beam with one spring beside it";
+  static constexpr int ext = 12, ent = 2;
+};
+using beam_one_spring =
+    composite<beam1_spec, part<elastic_beam, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13>, part<linear_spring, 0, 6>>;
+
+/// A spring whose force saturates: f = atan(u1 - u2). Newton on it diverges from far away.
+struct atan_spring {
+  static constexpr pradis::passport passport{.name = "ATANS", .ext = 2, .par = 0, .adr = 1, .ign = 23};
+  static constexpr element_help help{.title = "test spring with force atan(u1 - u2)",
+                                     .name = "test",
+                                     .field = "test",
+                                     .dofs = "1 - a\n2 - b",
+                                     .parameters = "",
+                                     .work = "",
+                                     .special = "none"};
+  struct parameters {};
+  explicit atan_spring(parameters) {}
+  static atan_spring from_parameters(std::span<const double>) { return atan_spring({}); }
+  void evaluate(const local_input<atan_spring>& in, local_output<atan_spring>& out, element_context&) const {
+    const double d = in.u(0) - in.u(1), f = std::atan(d), k = 1 / (1 + d * d);
+    out.f << f, -f;
+    if (out.want_jacobian) out.K << k, -k, -k, k;
+  }
+};
+struct soft_spec {
+  static constexpr std::string_view name = "SOFT2C";
+  static constexpr std::string_view title = "a weak linear spring in series with a saturating one";
+  static constexpr int ext = 2, ent = 1;
+};
+using soft_series = condensed<soft_spec, part<linear_spring, 0, 2>, part<atan_spring, 2, 1>>;
+
+/// Parts that put mass, damping, or an initial value on the condensed DOF (all refused).
+struct bad_spec {
+  static constexpr std::string_view name = "BAD2C";
+  static constexpr std::string_view title = "springs in series with something on the middle point";
+  static constexpr int ext = 2, ent = 1;
+};
+using mass_in_middle = condensed<bad_spec, part<linear_spring, 0, 2>, part<point_mass, 2>, part<linear_spring, 2, 1>>;
+using damper_to_middle =
+    condensed<bad_spec, part<linear_spring, 0, 2>, part<linear_damper, 0, 2>, part<linear_spring, 2, 1>>;
+using x0_in_middle =
+    condensed<bad_spec, part<linear_spring, 0, 2>, part<initial_displacement, 2>, part<linear_spring, 2, 1>>;
+/// Two links in a straight line A - C - B: the centre has no stiffness across the line when unstretched.
+struct line_spec {
+  static constexpr std::string_view name = "LINE2C";
+  static constexpr std::string_view title = "two links in a line, the middle point condensed";
+  static constexpr int ext = 4, ent = 2;
+};
+using straight_pair = condensed<line_spec, part<planar_link, 0, 1, 4, 5>, part<planar_link, 4, 5, 2, 3>>;
+
+/// A context with its own work and state vectors for an element of type E.
+template <class E>
+struct cond_context {
+  std::vector<double> work = std::vector<double>(static_cast<std::size_t>(E::passport.wrk), 0.0);
+  std::vector<double> old_s = std::vector<double>(static_cast<std::size_t>(E::passport.str), 0.0);
+  std::vector<double> new_s = std::vector<double>(static_cast<std::size_t>(E::passport.str), 0.0);
+  element_context ctx;
+  explicit cond_context(std::string_view name) : ctx(E::passport.name, name) {
+    ctx.work = work;
+    ctx.old_state = old_s;
+    ctx.new_state = new_s;
+    ctx.npar = E::passport.par;
+  }
+};
+
+/// A random state around the reference (displacements of +-0.1, hidden q4 slots near 1).
+template <class E>
+local_input<E> random_state(std::mt19937& gen, std::initializer_list<int> q4 = {}) {
+  std::uniform_real_distribution<double> d(-0.1, 0.1);
+  local_input<E> in;
+  for (int k = 0; k < element_traits<E>::n; ++k) {
+    in.u(k) = d(gen);
+    in.v(k) = 10 * d(gen);
+    in.a(k) = 100 * d(gen);
+  }
+  for (int k : q4) in.u(k) += 1.0;
+  return in;
+}
+
+}  // namespace
+
+TEST_SUITE("elements/condensed") {
+  TEST_CASE("the passport of a condensed composite: the external DOFs, the parts' PAR, one state per condensed DOF") {
+    static_assert(check_element<series>());
+    static_assert(series::passport.ext == 2 && series::passport.ent == 0);
+    static_assert(series::passport.par == 2);
+    static_assert(series::passport.str == 1);  // the middle point's displacement
+    static_assert(series::passport.wrk == series_kept::passport.wrk + 2);
+    static_assert(series::passport.adr == 1 && series::passport.ign == 23);  // K only, as the springs
+    static_assert(series::condensed_dofs == std::array<int, 1>{2});
+    static_assert(check_element<star>());
+    static_assert(star::passport.ext == 6 && star::passport.ent == 0 && star::passport.str == 3 * 2 + 2);
+    // The hidden q4 of the external rotational nodes stay, renumbered after the external DOFs.
+    static_assert(check_element<beam_parts>());
+    static_assert(beam_parts::passport.ext == 12 && beam_parts::passport.ent == 2);
+    static_assert(beam_parts::rotation_nodes ==
+                  std::array<rotation_slot, 2>{rotation_slot{3, 12}, rotation_slot{9, 13}});
+    static_assert(beam_parts::condensed_dofs == std::array<int, 1>{14});
+    CHECK(std::string(series::help.name) ==
+          "Condensed super-element of 2 parts: SPRING, SPRING. Internal DOFs eliminated by static condensation: 1.");
+    CHECK(std::string(series::help.work).find("6 - Newton iterations on the condensed DOFs in the last call") !=
+          std::string::npos);
+    CHECK(help_lines(series::help.parameters) == 2);
+    CHECK(std::string(series::help.parameters).find("part 2 'SPRING' (right spring)") != std::string::npos);
+  }
+
+  TEST_CASE("two springs in series condense to one spring of stiffness k1 k2 / (k1 + k2)") {
+    const double k1 = 2.0e3, k2 = 3.0e3, keff = k1 * k2 / (k1 + k2);
+    series s({{linear_spring::parameters{k1}, linear_spring::parameters{k2}}});
+    cond_context<series> c("pair");
+    s.new_integration(c.ctx);
+    std::mt19937 gen(7);
+    for (int trial = 0; trial < 5; ++trial) {
+      const local_input<series> in = random_state<series>(gen);
+      local_output<series> out;
+      s.evaluate(in, out, c.ctx);
+      const double d = in.u(0) - in.u(1);
+      CHECK(out.f(0) == doctest::Approx(keff * d).epsilon(1e-13));
+      CHECK(out.f(1) == doctest::Approx(-keff * d).epsilon(1e-13));
+      CHECK(out.K(0, 0) == doctest::Approx(keff).epsilon(1e-13));
+      CHECK(out.K(0, 1) == doctest::Approx(-keff).epsilon(1e-13));
+      CHECK(out.K(1, 1) == doctest::Approx(keff).epsilon(1e-13));
+      // The middle point where both springs carry the same force: (k1 u1 + k2 u2) / (k1 + k2).
+      CHECK(c.new_s[0] == doctest::Approx((k1 * in.u(0) + k2 * in.u(1)) / (k1 + k2)).epsilon(1e-13));
+      // Linear parts: one Newton step is exact, the second confirms it.
+      CHECK(c.work[static_cast<std::size_t>(series::work_at)] <= 2.0);
+    }
+    CHECK(c.work[static_cast<std::size_t>(series::work_at + 1)] <= 10.0);
+  }
+
+  TEST_CASE("a mass on the condensed springs moves as a mass on one spring of the series stiffness, to round-off") {
+    // The same equation m u'' + keff u = 0 in both runs, same steps: only round-off in keff differs.
+    const double k1 = 2.0e3, k2 = 3.0e3, keff = k1 * k2 / (k1 + k2), m = 0.5;
+    const auto run = [&](bool condense) {
+      model<point_mass, linear_spring, series, initial_displacement> md;
+      const dof x = md.add_dof("x");
+      md.add<point_mass>("body", {m}, x);
+      if (condense)
+        md.add<series>("pair", {{linear_spring::parameters{k1}, linear_spring::parameters{k2}}}, x, md.ground());
+      else
+        md.add<linear_spring>("spring", {keff}, x, md.ground());
+      md.add<initial_displacement>("x0", {0.01}, x);
+      simulation sim(md);
+      std::vector<double> u;
+      sim.on_output([&](const auto& st) { u.push_back(st.u(x)); });
+      sim.run(fixed_step(0.2, 1e-3));
+      return u;
+    };
+    const std::vector<double> a = run(true), b = run(false);
+    REQUIRE(a.size() == b.size());
+    REQUIRE(a.size() == 201);
+    double worst = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+    CHECK(worst <= 1e-14);  // measured 0 to a few 1e-18 (of a 1e-2 m motion)
+    // The trapezoidal rule conserves the energy of the linear oscillator: the amplitude stays 0.01.
+    double amp = 0;
+    for (double u : a) amp = std::max(amp, std::abs(u));
+    CHECK(amp <= 0.01 * (1 + 1e-9));
+    CHECK(amp >= 0.0099);
+  }
+
+  TEST_CASE(
+      "a condensed star of links: the centre in equilibrium, the flows those of the composite there, the Jacobian "
+      "checked by finite differences") {
+    star s(star::example());
+    star_kept full(star_kept::example());
+    cond_context<star> c("star");
+    cond_context<star_kept> ck("kept");
+    s.new_integration(c.ctx);
+    full.new_integration(ck.ctx);
+    std::mt19937 gen(11);
+    for (int trial = 0; trial < 5; ++trial) {
+      const local_input<star> in = random_state<star>(gen);
+      local_output<star> out;
+      s.evaluate(in, out, c.ctx);
+      local_input<star_kept> fin;
+      fin.u.head<6>() = in.u;
+      fin.u.tail<2>() << c.new_s[6], c.new_s[7];
+      local_output<star_kept> fout;
+      full.evaluate(fin, fout, ck.ctx);
+      const double scale = fout.f.cwiseAbs().maxCoeff();
+      CHECK(fout.f.tail<2>().cwiseAbs().maxCoeff() <= 1e-12 * scale);  // the centre is in equilibrium
+      CHECK((fout.f.head<6>() - out.f).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+      CHECK(c.work[static_cast<std::size_t>(star::work_at)] <= 6.0);  // Newton converges in a few steps
+    }
+    testing::jacobian_checker<star> chk(star(star::example()));
+    for (int trial = 0; trial < 5; ++trial)
+      if (!jacobian_passes(chk.check(random_state<star>(gen)))) break;
+  }
+
+  TEST_CASE("a model with the condensed star moves as the model with the star kept (its centre massless)") {
+    // The same DAE, the same 300 steps: the kept model solves the centre's equations in its global Newton iterations,
+    // the condensed element in its own. The bound is what the Newton tolerance allows (a velocity correction below
+    // dabsu = 1e-9 m/s moves a displacement by less than h / 2 x 1e-9 m a step, 1.5e-10 m in 300 steps); measured:
+    // 3.3e-16 m, round-off, as both Newton iterations converge quadratically far below it. The condensed model needs
+    // 600 global Newton iterations, the kept one 1513.
+    const auto run = [&](bool condense) {
+      model<point_mass, star, star_kept, initial_velocity> md;
+      std::vector<dof> x;
+      for (int k = 0; k < 6; ++k) {
+        x.push_back(md.add_dof("x" + std::to_string(k + 1)));
+        md.add<point_mass>("m" + std::to_string(k + 1), {0.2}, x.back());
+      }
+      if (condense) {
+        md.add<star>("star", star::example(), x[0], x[1], x[2], x[3], x[4], x[5]);
+      } else {
+        md.add<star_kept>("star", star_kept::example(), x[0], x[1], x[2], x[3], x[4], x[5]);  // C: internal
+      }
+      md.add<initial_velocity>("v3y", {1.0}, x[5]);
+      md.add<initial_velocity>("v1x", {-0.5}, x[0]);
+      simulation sim(md);
+      std::vector<double> u;
+      sim.on_output([&](const auto& st) {
+        for (int k = 0; k < 6; ++k) u.push_back(st.u(x[static_cast<std::size_t>(k)]));
+      });
+      // Tolerances both models reach: the trapezoidal velocity of the kept massless centre changes by 2 / h times its
+      // displacement correction, so tight_newton's 1e-12 m/s would ask for round-off in u.
+      sim.run({.end = 0.3, .smax = 1e-3, .newton = {.dabsu = 1e-9, .drltu = 0, .dabsi = 1e-6, .drlti = 0, .itr = 10}});
+      const auto& st = sim.statistics();
+      INFO("condense ", condense, " steps ", st.steps, " rejected ", st.rejected_steps, " iterations ",
+           st.newton_iterations);
+      CHECK(st.rejected_steps == 0);
+      return u;
+    };
+    const std::vector<double> a = run(true), b = run(false);
+    REQUIRE(a.size() == b.size());
+    REQUIRE(a.size() == 6 * 301);
+    double worst = 0, size = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      worst = std::max(worst, std::abs(a[i] - b[i]));
+      size = std::max(size, std::abs(b[i]));
+    }
+    CHECK(size > 0.1);
+    CHECK(worst <= 1e-9 * size);
+  }
+
+  TEST_CASE(
+      "the hidden q4 of external rotational nodes stay: a beam with condensed springs beside it is the beam with one "
+      "spring of the series stiffness") {
+    const double k1 = 4e2, k2 = 6e2, keff = k1 * k2 / (k1 + k2);
+    const auto bp = elastic_beam::example();
+    beam_parts s({{bp, linear_spring::parameters{k1}, linear_spring::parameters{k2}}});
+    beam_one_spring one({{bp, linear_spring::parameters{keff}}});
+    cond_context<beam_parts> c("beam");
+    cond_context<beam_one_spring> c1("one");
+    s.new_integration(c.ctx);
+    one.new_integration(c1.ctx);
+    std::mt19937 gen(5);
+    for (int trial = 0; trial < 3; ++trial) {
+      const local_input<beam_parts> in = random_state<beam_parts>(gen, {12, 13});
+      local_input<beam_one_spring> i1;
+      i1.u = in.u;
+      i1.v = in.v;
+      i1.a = in.a;
+      local_output<beam_parts> out;
+      local_output<beam_one_spring> o1;
+      s.evaluate(in, out, c.ctx);
+      one.evaluate(i1, o1, c1.ctx);
+      const double fs = o1.f.cwiseAbs().maxCoeff(), ks = o1.K.cwiseAbs().maxCoeff();
+      CHECK((out.f - o1.f).cwiseAbs().maxCoeff() <= 1e-12 * fs);
+      CHECK((out.K - o1.K).cwiseAbs().maxCoeff() <= 1e-12 * ks);
+    }
+    testing::jacobian_checker<beam_parts> chk(
+        beam_parts({{bp, linear_spring::parameters{k1}, linear_spring::parameters{k2}}}));
+    for (int trial = 0; trial < 3; ++trial)
+      if (!jacobian_passes(chk.check(random_state<beam_parts>(gen, {12, 13})))) break;
+  }
+
+  TEST_CASE("errors of a condensed composite") {
+    SUBCASE("a part's bad parameter: code 100 at NEWINT, naming the part") {
+      series s({{linear_spring::parameters{1.0}, linear_spring::parameters{-2.0}}});
+      cond_context<series> c("pair");
+      check_error(error_from([&] { s.new_integration(c.ctx); }), error_code::invalid_parameter, "SPRING2C", "pair",
+                  "part 2 'SPRING' (right spring), parameters 2..2 of SPRING2C: stiffness k = -2 must be finite");
+    }
+    SUBCASE("mass on the condensed DOF: code 100") {
+      mass_in_middle s({{linear_spring::parameters{1.0}, point_mass::parameters{2.0}, linear_spring::parameters{1.0}}});
+      cond_context<mass_in_middle> c("mid");
+      local_input<mass_in_middle> in;
+      local_output<mass_in_middle> out;
+      check_error(error_from([&] { s.evaluate(in, out, c.ctx); }), error_code::invalid_parameter, "BAD2C", "mid",
+                  "internal DOF 3 (on part 1 'SPRING') carries mass (dF/da): a condensed DOF must be quasi-static");
+    }
+    SUBCASE("damping on the condensed DOF: code 100") {
+      damper_to_middle s(
+          {{linear_spring::parameters{1.0}, linear_damper::parameters{2.0}, linear_spring::parameters{1.0}}});
+      cond_context<damper_to_middle> c("mid");
+      local_input<damper_to_middle> in;
+      local_output<damper_to_middle> out;
+      check_error(error_from([&] { s.evaluate(in, out, c.ctx); }), error_code::invalid_parameter, "BAD2C", "mid",
+                  "internal DOF 3 (on part 1 'SPRING') carries damping (dF/dv)");
+    }
+    SUBCASE("an initial value requested on the condensed DOF: code 90") {
+      x0_in_middle s(
+          {{linear_spring::parameters{1.0}, initial_displacement::parameters{0.1}, linear_spring::parameters{1.0}}});
+      cond_context<x0_in_middle> c("mid");
+      initial_values<2> iv;
+      check_error(error_from([&] { s.zero_step(iv, c.ctx); }), error_code::conflicting_initial, "BAD2C", "mid",
+                  "a part requests an initial value of internal DOF 3, which is condensed");
+    }
+    SUBCASE("no stiffness on the condensed DOF: code 75, the step is cut") {
+      // A - C - B on a line, unstretched: the centre can move across the line freely (K_II singular).
+      straight_pair s({{planar_link::parameters{0, 0, 1, 0, 1e3}, planar_link::parameters{1, 0, 2, 0, 1e3}}});
+      cond_context<straight_pair> c("line");
+      s.new_integration(c.ctx);
+      local_input<straight_pair> in;
+      local_output<straight_pair> out;
+      check_error(error_from([&] { s.evaluate(in, out, c.ctx); }), error_code::singular_situation, "LINE2C", "line",
+                  "the stiffness of the condensed DOFs is singular");
+    }
+    SUBCASE("Newton on the condensed DOF does not converge: code 75 after 30 iterations") {
+      // r(x) = k x + atan(x - 5), k = 1e-3, from x = 0: Newton on the saturating atan overshoots ever further and ends
+      // cycling between about -+ pi / (2 k).
+      soft_series s({{linear_spring::parameters{1e-3}, atan_spring::parameters{}}});
+      cond_context<soft_series> c("soft");
+      s.new_integration(c.ctx);
+      local_input<soft_series> in;
+      in.u << 0.0, 5.0;
+      local_output<soft_series> out;
+      check_error(error_from([&] { s.evaluate(in, out, c.ctx); }), error_code::singular_situation, "SOFT2C", "soft",
+                  "the condensed DOFs did not converge in 30 Newton iterations");
+    }
+    SUBCASE("a non-finite input: code 150, no NaN leaves the element") {
+      series s({{linear_spring::parameters{1.0}, linear_spring::parameters{1.0}}});
+      cond_context<series> c("pair");
+      local_input<series> in;
+      in.u(0) = std::nan("");
+      local_output<series> out;
+      check_error(error_from([&] { s.evaluate(in, out, c.ctx); }), error_code::non_finite, "SPRING2C", "pair",
+                  "non-finite flow or stiffness on a condensed DOF");
+    }
+  }
+}
