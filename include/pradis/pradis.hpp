@@ -7,6 +7,7 @@
 #include "pradis/core/element.hpp"
 #include "pradis/core/error.hpp"
 #include "pradis/core/passport.hpp"
+#include "pradis/elements/condensed.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/elements/spatial/plate_mesh.hpp"
 #include "pradis/integrators/bdf/bdf_simulation.hpp"

@@ -34,6 +34,7 @@
 #include "pradis/linalg/sparse_lu.hpp"
 #include "pradis/linalg/sparsity.hpp"
 #include "pradis/model/model.hpp"
+#include "../elements/condensed_parts.hpp"
 
 // ---------------------------------------------------------------------------
 // Counting allocator hooks
@@ -355,6 +356,11 @@ TEST_SUITE("core/allocation") {
 
   TEST_CASE("no library element allocates in evaluate (with and without the Jacobian)") {
     check_all_elements(library_elements{});
+  }
+
+  TEST_CASE("condensed super-elements do not allocate in evaluate (their Newton iterations are fixed-size)") {
+    check_element_does_not_allocate<pradis_condensed_tests::star>();
+    check_element_does_not_allocate<pradis_condensed_tests::beam_parts>();
   }
 
   TEST_CASE("assembler::evaluate over a built planar chain (N = 50) does not allocate") {

@@ -18,6 +18,7 @@
 #include <tuple>
 #include <vector>
 
+#include "condensed_parts.hpp"
 #include "element_test_support.hpp"
 #include "pradis/elements/condensed.hpp"
 #include "pradis/testing/jacobian_check.hpp"
@@ -28,59 +29,11 @@ using pradis_element_tests::check_error;
 using pradis_element_tests::error_from;
 using pradis_element_tests::fixed_step;
 using pradis_element_tests::jacobian_passes;
+using namespace pradis_condensed_tests;
 
 namespace {
 
 // ---- condensed elements of the tests ----------------------------------------------
-
-/// Two springs in series, the point between them internal (composite DOF 3).
-struct series_spec {
-  static constexpr std::string_view name = "SPRING2C";
-  static constexpr std::string_view title = "two linear springs in series, the middle point condensed";
-  static constexpr int ext = 2, ent = 1;
-  static constexpr std::array<std::string_view, 2> labels{"left spring", "right spring"};
-};
-using series_kept = composite<series_spec, part<linear_spring, 0, 2>, part<linear_spring, 2, 1>>;
-using series = condensed<series_spec, part<linear_spring, 0, 2>, part<linear_spring, 2, 1>>;
-
-/// Three LINKD from the external points P1, P2, P3 (DOFs 1..6) to the internal centre C (DOFs 7, 8): a geometrically
-/// nonlinear star whose centre is condensed.
-struct star_spec {
-  static constexpr std::string_view name = "STAR3";
-  static constexpr std::string_view title = "three elastic links meeting at a condensed centre";
-  static constexpr int ext = 6, ent = 2;
-  static std::tuple<planar_link::parameters, planar_link::parameters, planar_link::parameters> example() {
-    return {{0, 0, 1, 0.7, 1e3}, {2, 0, 1, 0.7, 2e3}, {1, 2, 1, 0.7, 1.5e3}};
-  }
-};
-struct star_kept_spec : star_spec {
-  static constexpr std::string_view name = "STAR3K";
-};
-using star_kept = composite<star_kept_spec, part<planar_link, 0, 1, 6, 7>, part<planar_link, 2, 3, 6, 7>,
-                            part<planar_link, 4, 5, 6, 7>>;
-using star =
-    condensed<star_spec, part<planar_link, 0, 1, 6, 7>, part<planar_link, 2, 3, 6, 7>, part<planar_link, 4, 5, 6, 7>>;
-
-/// A BEAM3 between the external spatial nodes A (DOFs 1..6) and B (7..12) and, beside it, two springs in series from
-/// A's x to B's x through the condensed DOF 16; 13 and 14 are the hidden q4 of A and B, which stay (the condensed
-/// element's two internal DOFs).
-struct beam_spec {
-  static constexpr std::string_view name = "BEAMS2C";
-  static constexpr std::string_view title = "a beam with two springs in series beside it";
-  static constexpr int ext = 12, ent = 3;
-};
-using beam_parts_kept = composite<beam_spec, part<elastic_beam, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13>,
-                                  part<linear_spring, 0, 14>, part<linear_spring, 14, 6>>;
-using beam_parts = condensed<beam_spec, part<elastic_beam, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13>,
-                             part<linear_spring, 0, 14>, part<linear_spring, 14, 6>>;
-/// The same beam with the two springs replaced by one of their series stiffness.
-struct beam1_spec {
-  static constexpr std::string_view name = "BEAMS1";
-  static constexpr std::string_view title = "a beam with one spring beside it";
-  static constexpr int ext = 12, ent = 2;
-};
-using beam_one_spring =
-    composite<beam1_spec, part<elastic_beam, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13>, part<linear_spring, 0, 6>>;
 
 /// A spring whose force saturates: f = atan(u1 - u2). Newton on it diverges from far away.
 struct atan_spring {
