@@ -6,7 +6,8 @@
 // body-fixed force (closed-form translation), a body-fixed torque, a free body
 // with an offset centre of mass (conservation of momentum, angular momentum and
 // energy: Newton-Euler), a harmonic force (double integral of the load), and the
-// bad inputs (codes 100, 75, 90) with element, instance and message.
+// bad inputs (codes 100, 75, 90) with element, instance and message. The same
+// scenes placed from model files: tests/lang/test_spatial_nodes_model.cpp.
 
 #include <doctest/doctest.h>
 
@@ -18,7 +19,6 @@
 #include <vector>
 
 #include "../elements/element_test_support.hpp"
-#include "pradis/lang/lang.hpp"
 #include "spatial_test_support.hpp"
 
 using namespace pradis;
@@ -29,23 +29,6 @@ using pradis_element_tests::error_from;
 using pradis_spatial_tests::tight_newton;
 
 namespace {
-/// A model file: a body spinning about Z at 2 rad/s (Jz = 2) under a moment of 1 N m
-/// about Z, NEWMARK for 1 s at h = 1e-3, with more elements and the outputs given.
-std::string spin_model(const std::string& more_elements, const std::string& outputs) {
-  return "$DATA:\n"
-         "    Body = 1, 1, 1, 2, 0, 0, 0, 0, 0, 0\n"
-         "    Spin = 0, 0, 1, 0, 0, 0, 2\n"
-         "    Drive = 0, 0, 1, 0, 0, 0, 0, 0\n"
-         "$FRAGMENT:\n"
-         "#STRUCTURE:\n"
-         "    Body 'BODY3 (1 2 3 4 5 6; Body)\n"
-         "    Start 'ROT0 (4 5 6; Spin)\n"
-         "    Motor 'M3 (4 5 6; Drive)\n" +
-         more_elements + "#OUTPUT:\n" + outputs +
-         "$RUN:\n"
-         "    Spin up 'NEWMARK (END=1, OUT=0.1, SMAX=1E-3, DABSU=1E-12, DRLTU=0, DABSI=1E-10, DRLTI=0)\n"
-         "$END\n";
-}
 using pradis_spatial_tests::pi;
 /// Body parameters: mass m, principal inertias (jx, jy, jz), centre of mass at P.
 using pradis_spatial_tests::body;
@@ -374,67 +357,6 @@ TEST_SUITE("spatial/elements") {
                 "BODY3", "body", "Lq far from 1");
     MESSAGE("Lq far from 1 reported at t = ", sim.time(), ", |w| = ", node_angular_velocity(sim, r).norm());
     CHECK(sim.time() > 0.5);
-  }
-
-  TEST_CASE("the model language places BODY3, ROT0 and M3 by node numbers; the hidden q4 is created by itself") {
-    // A body spinning about Z at 2 rad/s with Jz = 2 and a moment 1 N m about Z:
-    // theta = 2 t + t^2 / 4 (Euler's equation about a fixed principal axis).
-    const std::string text = spin_model("", "    Q3 'X (6; 1)\n");
-    lang::session s(lang::parse_string(text, "spin.prd", lang::read_file));
-    s.run({.write_files = false});
-    REQUIRE(s.model().rotation_nodes().size() == 1);
-    const auto node = s.model().find_rotation_node(dof{s.dof_of_node(4)});
-    REQUIRE(node.has_value());
-    REQUIRE(s.simulation_ptr() != nullptr);
-    const double theta = 2.0 + 0.25;
-    CHECK(angle_between(node_quaternion(*s.simulation_ptr(), *node), from_axis_angle(vec3::UnitZ(), theta)) < 1e-6);
-  }
-
-  TEST_CASE("the outputs 'W and 'LQ give a node's global angular velocity and quaternion norm in model files") {
-    // The spinning body above: omega_z = 2 + t / 2 exactly (Jz = 2, M = 1 N m about Z);
-    // omega_x = omega_y = 0, up to the trapezoidal rule's phase error on the quaternion, which
-    // turns at w / 2: relative (w h / 2)^2 / 12, at most 2.5 (1.25e-3)^2 / 12 = 3.3e-7 rad/s.
-    // Lq moves by h^2 D|w|^2 / 32 (docs/rotations.md), D|w|^2 = 2.5^2 - 2^2 = 2.25 here. A second node with q1 and q2 fixed
-    // (nodes 0 0 9) turns about Z under the same moment.
-    const std::string flat = "    Flat 'BODY3 (0 0 0 0 0 9; Body)\n    Motor2 'M3 (0 0 9; Drive)\n";
-    const std::string text =
-        spin_model(flat, "    Wx 'W (4 5 6; 1)\n    Wz 'W (4 5 6; 3)\n    'LQ (4 5 6)\n    Flat wz 'W (0 0 9; 3)\n");
-    lang::session s(lang::parse_string(text, "spin.prd", lang::read_file));
-    s.run({.write_files = false});
-    const auto& r = s.results();
-    REQUIRE(r.rows() == 11);
-    REQUIRE(r.names().size() == 4);
-    CHECK(r.names()[2] == "LQ(4 5 6)");
-    double worst_w = 0, worst_lq = 0;
-    for (std::size_t i = 0; i < r.rows(); ++i) {
-      const double t = r.at(i, 0);  // column 0 is the time
-      worst_w = std::max({worst_w, std::abs(r.at(i, 1)), std::abs(r.at(i, 2) - (2 + t / 2)),
-                          std::abs(r.at(i, 4) - t / 2)});
-      worst_lq = std::max(worst_lq, std::abs(r.at(i, 3) - 1));
-    }
-    MESSAGE("'W max error ", worst_w, " rad/s; 'LQ max |Lq - 1| ", worst_lq);
-    CHECK(worst_w < 2.5 * (2.5e-3 / 2) * (2.5e-3 / 2) / 12);
-    CHECK(worst_lq == doctest::Approx(2.25 * 1e-6 / 32).epsilon(1e-3));
-
-    // Bad uses: located errors.
-    struct bad {
-      const char* output;
-      const char* mention;
-    };
-    for (const bad b : {bad{"    'W (4 5 6)\n", "'W needs (q1 q2 q3; k)"}, bad{"    'W (4 5 6; 4)\n", "axis"},
-                        bad{"    'LQ (4 5)\n", "'LQ needs (q1 q2 q3)"}, bad{"    'LQ (1 2 3)\n", "not the q1 q2 q3"},
-                        bad{"    'LQ (5 4 6)\n", "not the q1 q2 q3"}, bad{"    'LQ (0 0 0)\n", "the ground"},
-                        bad{"    'W (4 5 7; 1)\n", "node 7 is not connected"}}) {
-      CAPTURE(b.output);
-      try {
-        lang::session bad_session(lang::parse_string(spin_model(flat, b.output), "bad.prd", lang::read_file));
-        bad_session.run({.write_files = false});
-        FAIL("no error for ", b.output);
-      } catch (const lang::lang_error& e) {
-        CHECK(std::string(e.what()).find(b.mention) != std::string::npos);
-        CHECK(std::string(e.what()).find("bad.prd:") != std::string::npos);
-      }
-    }
   }
 
   TEST_CASE("F3, M3, F3B, M3B refuse a negative frequency or a non-finite load (100) and a wrong count (101)") {
