@@ -12,6 +12,9 @@
 #                           find_package(pradis).
 #
 # Run them with: ctest -L build   (or ctest -R 'compile_fail|consumer')
+# The asan-ubsan test preset leaves them out (label "build"): they compile code
+# with the plain compiler, exactly as in the dev run, so a second run under the
+# sanitizer preset would check nothing new (and cost about 5 minutes of CI).
 
 set(_pradis_bt_dir "${CMAKE_CURRENT_LIST_DIR}")
 

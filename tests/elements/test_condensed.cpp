@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <initializer_list>
+#include <optional>
 #include <random>
 #include <string>
 #include <string_view>
@@ -107,6 +108,17 @@ local_input<E> random_state(std::mt19937& gen, std::initializer_list<int> q4 = {
   }
   for (int k : q4) in.u(k) += 1.0;
   return in;
+}
+
+/// The error that NEWINT and one call of e at the state `in` raise, with the instance name `name`, or nothing.
+template <class E>
+std::optional<pradis::error> evaluation_error(E e, std::string_view name, const local_input<E>& in = {}) {
+  cond_context<E> c(name);
+  return error_from([&] {
+    e.new_integration(c.ctx);
+    local_output<E> out;
+    e.evaluate(in, out, c.ctx);
+  });
 }
 
 }  // namespace
@@ -300,26 +312,20 @@ TEST_SUITE("elements/condensed") {
 
   TEST_CASE("errors of a condensed composite") {
     SUBCASE("a part's bad parameter: code 100 at NEWINT, naming the part") {
-      series s({{linear_spring::parameters{1.0}, linear_spring::parameters{-2.0}}});
-      cond_context<series> c("pair");
-      check_error(error_from([&] { s.new_integration(c.ctx); }), error_code::invalid_parameter, "SPRING2C", "pair",
+      check_error(evaluation_error(series({{linear_spring::parameters{1.0}, linear_spring::parameters{-2.0}}}), "pair"),
+                  error_code::invalid_parameter, "SPRING2C", "pair",
                   "part 2 'SPRING' (right spring), parameters 2..2 of SPRING2C: stiffness k = -2 must be finite");
     }
     SUBCASE("mass on the condensed DOF: code 100") {
-      mass_in_middle s({{linear_spring::parameters{1.0}, point_mass::parameters{2.0}, linear_spring::parameters{1.0}}});
-      cond_context<mass_in_middle> c("mid");
-      local_input<mass_in_middle> in;
-      local_output<mass_in_middle> out;
-      check_error(error_from([&] { s.evaluate(in, out, c.ctx); }), error_code::invalid_parameter, "BAD2C", "mid",
+      const mass_in_middle s(
+          {{linear_spring::parameters{1.0}, point_mass::parameters{2.0}, linear_spring::parameters{1.0}}});
+      check_error(evaluation_error(s, "mid"), error_code::invalid_parameter, "BAD2C", "mid",
                   "internal DOF 3 (on part 1 'SPRING') carries mass (dF/da): a condensed DOF must be quasi-static");
     }
     SUBCASE("damping on the condensed DOF: code 100") {
-      damper_to_middle s(
+      const damper_to_middle s(
           {{linear_spring::parameters{1.0}, linear_damper::parameters{2.0}, linear_spring::parameters{1.0}}});
-      cond_context<damper_to_middle> c("mid");
-      local_input<damper_to_middle> in;
-      local_output<damper_to_middle> out;
-      check_error(error_from([&] { s.evaluate(in, out, c.ctx); }), error_code::invalid_parameter, "BAD2C", "mid",
+      check_error(evaluation_error(s, "mid"), error_code::invalid_parameter, "BAD2C", "mid",
                   "internal DOF 3 (on part 1 'SPRING') carries damping (dF/dv)");
     }
     SUBCASE("an initial value requested on the condensed DOF: code 90") {
@@ -332,34 +338,26 @@ TEST_SUITE("elements/condensed") {
     }
     SUBCASE("no stiffness on the condensed DOF: code 75, the step is cut") {
       // A - C - B on a line, unstretched: the centre can move across the line freely (K_II singular).
-      straight_pair s({{planar_link::parameters{0, 0, 1, 0, 1e3}, planar_link::parameters{1, 0, 2, 0, 1e3}}});
-      cond_context<straight_pair> c("line");
-      s.new_integration(c.ctx);
-      local_input<straight_pair> in;
-      local_output<straight_pair> out;
-      check_error(error_from([&] { s.evaluate(in, out, c.ctx); }), error_code::singular_situation, "LINE2C", "line",
+      const straight_pair s({{planar_link::parameters{0, 0, 1, 0, 1e3}, planar_link::parameters{1, 0, 2, 0, 1e3}}});
+      check_error(evaluation_error(s, "line"), error_code::singular_situation, "LINE2C", "line",
                   "the stiffness of the condensed DOFs is singular");
     }
     SUBCASE("Newton on the condensed DOF does not converge: code 75 after 30 iterations") {
       // r(x) = k x + atan(x - 5), k = 1e-3, from x = 0: Newton on the saturating atan overshoots ever further and ends
       // cycling between about -+ pi / (2 k).
-      soft_series s({{linear_spring::parameters{1e-3}, atan_spring::parameters{}}});
-      cond_context<soft_series> c("soft");
-      s.new_integration(c.ctx);
       local_input<soft_series> in;
       in.u << 0.0, 5.0;
-      local_output<soft_series> out;
-      check_error(error_from([&] { s.evaluate(in, out, c.ctx); }), error_code::singular_situation, "SOFT2C", "soft",
-                  "the condensed DOFs did not converge in 30 Newton iterations");
+      check_error(
+          evaluation_error(soft_series({{linear_spring::parameters{1e-3}, atan_spring::parameters{}}}), "soft", in),
+          error_code::singular_situation, "SOFT2C", "soft",
+          "the condensed DOFs did not converge in 30 Newton iterations");
     }
     SUBCASE("a non-finite input: code 150, no NaN leaves the element") {
-      series s({{linear_spring::parameters{1.0}, linear_spring::parameters{1.0}}});
-      cond_context<series> c("pair");
       local_input<series> in;
       in.u(0) = std::nan("");
-      local_output<series> out;
-      check_error(error_from([&] { s.evaluate(in, out, c.ctx); }), error_code::non_finite, "SPRING2C", "pair",
-                  "non-finite flow or stiffness on a condensed DOF");
+      check_error(
+          evaluation_error(series({{linear_spring::parameters{1.0}, linear_spring::parameters{1.0}}}), "pair", in),
+          error_code::non_finite, "SPRING2C", "pair", "non-finite flow or stiffness on a condensed DOF");
     }
   }
 }
