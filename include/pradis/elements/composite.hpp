@@ -220,7 +220,7 @@ struct composite {
   }
 
   /// Initial values the parts request, merged; two parts requesting different values for one DOF is code 90.
-  void zero_step(initial_values<element_traits<composite>::n>& iv,
+  void zero_step(initial_values<Spec::ext + Spec::ent>& iv,
                  element_context& ctx) requires(HasZeroStep<typename Ps::element> || ...) {
     std::array<int, static_cast<std::size_t>(element_traits<composite>::n)> by_u{}, by_v{};
     by_u.fill(-1);

@@ -249,7 +249,7 @@ struct condensed {
 
   /// Initial values the parts request on kept DOFs; a request on a condensed DOF, which the condensation computes, is
   /// code 90.
-  void zero_step(initial_values<element_traits<condensed>::n>& iv,
+  void zero_step(initial_values<lay_.nr>& iv,
                  element_context& ctx) requires(HasZeroStep<full_type>) {
     initial_values<full_traits::n> fiv;
     full_.zero_step(fiv, ctx);
