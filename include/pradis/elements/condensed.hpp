@@ -133,14 +133,16 @@ struct condensed {
  private:
   struct name_f {
     constexpr std::string operator()() const {
-      return "Condensed s" + std::string(full_type::help.name).substr(1) +
+      // Built from the parts' texts again, not from full_type::help: reading a text_storage array in a constant
+      // expression is refused by GCC under -fsanitize=address,undefined (its null-pointer check).
+      return "Condensed s" + composite_detail::name_text<Ps...>().substr(1) +
              " Internal DOFs eliminated by static condensation: " + composite_detail::number(lay_.ni) + ".";
     }
   };
   struct work_f {
     constexpr std::string operator()() const {
       const int k = full_type::passport.wrk;
-      return std::string(full_type::help.work) + "\n" + composite_detail::number(k + 1) +
+      return composite_detail::work_text<Spec, Ps...>() + "\n" + composite_detail::number(k + 1) +
              " - Newton iterations on the condensed DOFs in the last call [-]\n" + composite_detail::number(k + 2) +
              " - Newton iterations on the condensed DOFs in all calls [-]";
     }
