@@ -71,10 +71,10 @@ struct wrong_link : elements::planar_link {
   using elements::planar_link::planar_link;
   static wrong_link from_parameters(std::span<const double> v) { return wrong_link({v[0], v[1], v[2], v[3], v[4]}); }
   void evaluate(const local_input<wrong_link>& in, local_output<wrong_link>& out, element_context& ctx) const {
-    local_input<planar_link> i2;
+    local_input<elements::planar_link> i2;
     i2.u = in.u;
-    local_output<planar_link> o2;
-    planar_link::evaluate(i2, o2, ctx);
+    local_output<elements::planar_link> o2;
+    elements::planar_link::evaluate(i2, o2, ctx);
     out.f = o2.f;
     out.K = o2.K;
     out.K(0, 1) = -out.K(0, 1);

@@ -84,7 +84,8 @@ inline Eigen::MatrixXd pick(const Eigen::MatrixXd& a, const std::vector<int>& r,
 /// invalid_option for more modes than interior DOFs; singular_matrix if K_ii is
 /// not positive definite (the boundary does not hold the part) or M_ii is not
 /// positive definite with modes asked for.
-inline reduced_part craig_bampton(const Eigen::MatrixXd& k, const Eigen::MatrixXd& m, const std::vector<int>& boundary,
+template <class = void>  // compiled only in units that call it
+reduced_part craig_bampton(const Eigen::MatrixXd& k, const Eigen::MatrixXd& m, const std::vector<int>& boundary,
                                   int modes) {
   detail::check_part(k, m, boundary, "craig_bampton");
   const Eigen::Index n = k.rows();
@@ -136,7 +137,8 @@ inline reduced_part craig_bampton(const Eigen::MatrixXd& k, const Eigen::MatrixX
 }
 
 /// Static (Guyan) condensation to the boundary DOFs: craig_bampton(k, m, boundary, 0).
-inline reduced_part guyan(const Eigen::MatrixXd& k, const Eigen::MatrixXd& m, const std::vector<int>& boundary) {
+template <class = void>  // compiled only in units that call it
+reduced_part guyan(const Eigen::MatrixXd& k, const Eigen::MatrixXd& m, const std::vector<int>& boundary) {
   return craig_bampton(k, m, boundary, 0);
 }
 

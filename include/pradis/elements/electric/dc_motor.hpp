@@ -12,6 +12,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct dc_motor_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using dc_motor = dc_motor_t<>;
 /// DCM: DC motor with armature resistance R and inductance L and motor constant k
 /// (back-EMF k w, torque k i). Terminals: nodes 1 (+) and 2 (-); shaft: a 1D
 /// rotation DOF whose v is the angular speed w. The armature current i (from node 1
@@ -21,7 +25,8 @@ namespace pradis::elements {
 /// Flows: i on node 1, -i on node 2, -k i on the shaft (the motor drives the shaft
 /// with the torque k i). Electric power (v1 - v2) i = R i^2 + L i i' + k i w: the
 /// converted power k i w is the mechanical power. Blocks C and M (ADR=2, IGN=0).
-struct dc_motor {
+template <class>
+struct dc_motor_t {
   static constexpr pradis::passport passport{.name = "DCM", .ext = 3, .ent = 1, .par = 3, .wrk = 3, .adr = 2};
   static constexpr std::array<domain, 4> domains{domain::electric, domain::electric, domain::mechanical,
                                                  domain::electric};
@@ -41,7 +46,7 @@ struct dc_motor {
     double k = 1;  ///< motor constant [V s/rad]
   };
   parameters p;
-  explicit dc_motor(parameters q) : p(q) {}
+  explicit dc_motor_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {1.2, 0.05, 0.8}; }
   static dc_motor from_parameters(std::span<const double> v) { return dc_motor({v[0], v[1], v[2]}); }

@@ -19,9 +19,14 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct resistor_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using resistor = resistor_t<>;
 /// R: linear resistor between nodes 1 and 2: current i = (v1 - v2) / R from node 1
 /// to node 2. Flows i, -i. Pure viscosity (ADR=2, IGN=3).
-struct resistor {
+template <class>
+struct resistor_t {
   static constexpr pradis::passport passport{.name = "R", .ext = 2, .par = 1, .wrk = 1, .adr = 2, .ign = 3};
   static constexpr std::array<domain, 2> domains{domain::electric, domain::electric};
   static constexpr element_help help{.title = "linear resistor between two nodes",
@@ -35,7 +40,7 @@ struct resistor {
     double r = 1;  ///< resistance R [Ohm]
   };
   parameters p;
-  explicit resistor(parameters q) : p(q) {}
+  explicit resistor_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {4.7}; }
   static resistor from_parameters(std::span<const double> v) { return resistor({v[0]}); }
@@ -50,10 +55,15 @@ struct resistor {
   }
 };
 
+template <class = void>
+struct capacitor_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using capacitor = capacitor_t<>;
 /// C: linear capacitor between nodes 1 and 2: current i = C (v1' - v2') from node 1
 /// to node 2. Flows i, -i. Pure inertia (ADR=3). Its initial voltage is that of its
 /// nodes (0 unless set, e.g. by V0 on a node).
-struct capacitor {
+template <class>
+struct capacitor_t {
   static constexpr pradis::passport passport{.name = "C", .ext = 2, .par = 1, .wrk = 2, .adr = 3};
   static constexpr std::array<domain, 2> domains{domain::electric, domain::electric};
   static constexpr element_help help{.title = "linear capacitor between two nodes",
@@ -68,7 +78,7 @@ struct capacitor {
     double c = 1;  ///< capacitance C [F]
   };
   parameters p;
-  explicit capacitor(parameters q) : p(q) {}
+  explicit capacitor_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {2.2}; }
   static capacitor from_parameters(std::span<const double> v) { return capacitor({v[0]}); }
@@ -84,11 +94,16 @@ struct capacitor {
   }
 };
 
+template <class = void>
+struct inductor_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using inductor = inductor_t<>;
 /// L: linear inductor between nodes 1 and 2. With u the flux linkage (time integral
 /// of the voltage), L di/dt = v1 - v2 integrates to i = (u1 - u2) / L + i0, the
 /// current from node 1 to node 2 (i0 at t = 0, where u = 0). Flows i, -i. Pure
 /// stiffness (ADR=1, IGN=23): no internal DOF is needed.
-struct inductor {
+template <class>
+struct inductor_t {
   static constexpr pradis::passport passport{.name = "L", .ext = 2, .par = 2, .wrk = 1, .adr = 1, .ign = 23};
   static constexpr std::array<domain, 2> domains{domain::electric, domain::electric};
   static constexpr element_help help{.title = "linear inductor between two nodes",
@@ -106,7 +121,7 @@ struct inductor {
     double i0 = 0;  ///< initial current [A]
   };
   parameters p;
-  explicit inductor(parameters q) : p(q) {}
+  explicit inductor_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {0.5, 0.2}; }
   static inductor from_parameters(std::span<const double> v) { return inductor({v[0], v[1]}); }

@@ -14,6 +14,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct diode_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using diode = diode_t<>;
 /// D: diode from node 1 (anode) to node 2 (cathode), vd = v1 - v2. Shockley's law
 /// i = Is (exp(vd / (n Vt)) - 1) up to the limiting voltage Vmax, continued above it
 /// by its tangent at Vmax (so exp never overflows and Newton cannot be thrown to
@@ -22,7 +26,8 @@ namespace pradis::elements {
 ///     vd <= Vmax:  i = Is (exp(vd/(n Vt)) - 1) + Gmin vd
 ///     vd >  Vmax:  i = Is (exp(Vmax/(n Vt)) (1 + (vd - Vmax)/(n Vt)) - 1) + Gmin vd
 /// The current and its derivative are continuous at Vmax (the curve is C1).
-struct diode {
+template <class>
+struct diode_t {
   static constexpr pradis::passport passport{.name = "D", .ext = 2, .par = 5, .wrk = 2, .adr = 2, .ign = 3};
   static constexpr std::array<domain, 2> domains{domain::electric, domain::electric};
   static constexpr element_help help{
@@ -47,7 +52,7 @@ struct diode {
     double gmin = 1e-12;   ///< minimum conductance [S]
   };
   parameters p;
-  explicit diode(parameters q) : p(q) {}
+  explicit diode_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {1e-9, 1.5, 0.025852, 0.7, 1e-6}; }
   static diode from_parameters(std::span<const double> v) { return diode({v[0], v[1], v[2], v[3], v[4]}); }
@@ -85,12 +90,17 @@ struct diode {
   static constexpr double max_exponent = 200;
 };
 
+template <class = void>
+struct time_switch_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using time_switch = time_switch_t<>;
 /// SW: time-switched resistance between nodes 1 and 2: R1 before t1, R2 from t1 + tau
 /// to t2, R1 again from t2 + tau, with smooth transitions of length tau. The
 /// resistance moves geometrically, R = R1^(1-s) R2^s, with the C1 ramp
 /// s(t) = S((t - t1)/tau) - S((t - t2)/tau), S(x) = 3x^2 - 2x^3 on [0, 1] (0 before,
 /// 1 after). A closing switch has R1 large and R2 small, an opening one the reverse.
-struct time_switch {
+template <class>
+struct time_switch_t {
   static constexpr pradis::passport passport{.name = "SW", .ext = 2, .par = 5, .wrk = 2, .adr = 2, .ign = 3};
   static constexpr std::array<domain, 2> domains{domain::electric, domain::electric};
   static constexpr element_help help{
@@ -112,7 +122,7 @@ struct time_switch {
     double tau = 1e-6; ///< transition time [s]
   };
   parameters p;
-  explicit time_switch(parameters q) : p(q) {}
+  explicit time_switch_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {100.0, 0.5, 0.6, 1.4, 0.3}; }
   static time_switch from_parameters(std::span<const double> v) { return time_switch({v[0], v[1], v[2], v[3], v[4]}); }

@@ -11,6 +11,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct accumulator_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using accumulator = accumulator_t<>;
 /// HACC: accumulator with gas volume V0 pre-charged to the absolute pressure p0. Above the
 /// pre-charge the gas is compressed polytropically, p_abs V_gas^n = p0 V0^n (p_abs = pa + p),
 /// so the stored liquid volume is V0 g(p), g(p) = 1 - (p0 / p_abs)^(1/n). Below the pre-charge
@@ -18,7 +22,8 @@ namespace pradis::elements {
 /// volume Vd of bulk modulus B at the port keeps a capacitance when empty. Flow:
 ///   q = dVf/dt = C(p) dp/dt,  Vf(p) = V0 ramp(g(p)) + Vd p / B,  C = V0 ramp'(g) g' + Vd / B
 /// (inertia block C, viscous block dC/dp dp/dt).
-struct accumulator {
+template <class>
+struct accumulator_t {
   static constexpr pradis::passport passport{.name = "HACC", .ext = 1, .par = 6, .wrk = 3, .adr = 2, .ign = 0};
   static constexpr std::array<domain, 1> domains{domain::hydraulic};
   static constexpr element_help help{
@@ -40,7 +45,7 @@ struct accumulator {
     double bulk_modulus = 0;   ///< B [Pa]
   };
   parameters p;
-  explicit accumulator(parameters q) : p(q) {}
+  explicit accumulator_t(parameters q) : p(q) {}
   /// Example parameters (scaled units: the pre-charge lies at p = 5, inside the test's +-10).
   static parameters example() { return {2.0, 25.0, 1.4, 20.0, 0.5, 40.0}; }
   static accumulator from_parameters(std::span<const double> v) {

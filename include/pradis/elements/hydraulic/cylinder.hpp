@@ -11,6 +11,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct hydraulic_cylinder_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using hydraulic_cylinder = hydraulic_cylinder_t<>;
 /// HCYL: double-acting cylinder with a fixed housing. DOF 1: pressure pA of the cap-side
 /// chamber (area AA), DOF 2: pressure pB of the rod-side chamber (area AB), DOF 3: piston
 /// displacement x (positive extends, enlarging chamber A). Piston position s = s0 + x in
@@ -21,7 +25,8 @@ namespace pradis::elements {
 /// End stops: a stiff spring-damper that engages smoothly over the penetration width w,
 ///   Fs = ke r(-s) - ce r'(-s) dx/dt - ke r(s - stroke) - ce r'(s - stroke) dx/dt,
 /// r(d) = 0 (d <= -w), (d + w)^2 / (4 w) (|d| < w), d (d >= w): a C1 penalty contact.
-struct hydraulic_cylinder {
+template <class>
+struct hydraulic_cylinder_t {
   static constexpr pradis::passport passport{.name = "HCYL", .ext = 3, .par = 10, .wrk = 5, .adr = 1};
   static constexpr std::array<domain, 3> domains{domain::hydraulic, domain::hydraulic, domain::mechanical};
   static constexpr element_help help{
@@ -49,7 +54,7 @@ struct hydraulic_cylinder {
     double stop_width = 1e-3;                   ///< w [m]
   };
   parameters p;
-  explicit hydraulic_cylinder(parameters q) : p(q) {}
+  explicit hydraulic_cylinder_t(parameters q) : p(q) {}
   /// Example parameters (scaled units; the all-elements test's +-3 reaches both end stops).
   static parameters example() { return {0.5, 0.3, 4.0, 2.0, 2.0, 2.0, 20.0, 100.0, 5.0, 0.1}; }
   static hydraulic_cylinder from_parameters(std::span<const double> v) {

@@ -12,6 +12,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct hydraulic_line_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using hydraulic_line = hydraulic_line_t<>;
 /// HLINE: a pipe segment of length l and inner diameter d as a lumped pi model: half
 /// its capacitance C = A l / B at each end, and between the ends an inertance
 /// L = rho l / A in series with the laminar (Hagen-Poiseuille) resistance
@@ -20,7 +24,8 @@ namespace pradis::elements {
 ///   qL = (u1 - um) / L  (the inertance: a stiffness block; u is the pressure impulse),
 ///   qR = (pm - p2) / R.
 /// The segment starts at rest (qL = 0 with u = 0 at t = 0). Chain segments for a long line.
-struct hydraulic_line {
+template <class>
+struct hydraulic_line_t {
   static constexpr pradis::passport passport{.name = "HLINE", .ext = 2, .ent = 1, .par = 5, .wrk = 4, .adr = 1};
   static constexpr std::array<domain, 3> domains{domain::hydraulic, domain::hydraulic, domain::hydraulic};
   static constexpr element_help help{
@@ -41,7 +46,7 @@ struct hydraulic_line {
     double viscosity = 0.03;  ///< mu [Pa s]
   };
   parameters p;
-  explicit hydraulic_line(parameters q) : p(q) {}
+  explicit hydraulic_line_t(parameters q) : p(q) {}
   /// Example parameters (scaled units).
   static parameters example() { return {2.0, 0.8, 30.0, 3.0, 0.05}; }
   static hydraulic_line from_parameters(std::span<const double> v) {

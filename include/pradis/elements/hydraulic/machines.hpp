@@ -35,11 +35,16 @@ inline void check_machine(element_context& ctx, double d, double gl, double cf) 
 }
 }  // namespace hydraulic_detail
 
+template <class = void>
+struct hydraulic_pump_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using hydraulic_pump = hydraulic_pump_t<>;
 /// HPUMP: fixed-displacement pump (port 1 suction, port 2 delivery, DOF 3 shaft rotation):
 /// delivered flow q = D w - Gl (p2 - p1), driving torque D (p2 - p1) + cf w.
 /// Volumetric efficiency at (w, p2 - p1): 1 - Gl (p2 - p1) / (D w); mechanical efficiency
 /// D (p2 - p1) / (D (p2 - p1) + cf w).
-struct hydraulic_pump {
+template <class>
+struct hydraulic_pump_t {
   static constexpr pradis::passport passport{.name = "HPUMP", .ext = 3, .par = 3, .wrk = 2, .adr = 2, .ign = 3};
   static constexpr std::array<domain, 3> domains{domain::hydraulic, domain::hydraulic, domain::mechanical};
   struct parameters {
@@ -57,7 +62,7 @@ struct hydraulic_pump {
       .work = "1 - flow q from port 1 to port 2 [m^3/s]\n2 - torque the shaft applies to the pump [N m]",
       .special = "code 100 if D is not positive or Gl, cf are negative; lossless with Gl = cf = 0"};
   parameters p;
-  explicit hydraulic_pump(parameters q) : p(q) {}
+  explicit hydraulic_pump_t(parameters q) : p(q) {}
   /// Example parameters (scaled units).
   static parameters example() { return {0.8, 0.05, 0.3}; }
   static hydraulic_pump from_parameters(std::span<const double> v) { return hydraulic_pump({v[0], v[1], v[2]}); }
@@ -69,10 +74,15 @@ struct hydraulic_pump {
   }
 };
 
+template <class = void>
+struct hydraulic_motor_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using hydraulic_motor = hydraulic_motor_t<>;
 /// HMOTOR: fixed-displacement motor (port 1 inlet, port 2 outlet, DOF 3 shaft rotation):
 /// absorbed flow q = D w + Gl (p1 - p2), torque on the shaft D (p1 - p2) - cf w (the flow of
 /// DOF 3 is its negative). The same equations as HPUMP with the ports named for a motor.
-struct hydraulic_motor {
+template <class>
+struct hydraulic_motor_t {
   static constexpr pradis::passport passport{.name = "HMOTOR", .ext = 3, .par = 3, .wrk = 2, .adr = 2, .ign = 3};
   static constexpr std::array<domain, 3> domains{domain::hydraulic, domain::hydraulic, domain::mechanical};
   using parameters = hydraulic_pump::parameters;
@@ -87,7 +97,7 @@ struct hydraulic_motor {
               "(minus the output torque)",
       .special = "code 100 if D is not positive or Gl, cf are negative; lossless with Gl = cf = 0"};
   parameters p;
-  explicit hydraulic_motor(parameters q) : p(q) {}
+  explicit hydraulic_motor_t(parameters q) : p(q) {}
   /// Example parameters (scaled units).
   static parameters example() { return {1.5, 0.02, 0.1}; }
   static hydraulic_motor from_parameters(std::span<const double> v) { return hydraulic_motor({v[0], v[1], v[2]}); }

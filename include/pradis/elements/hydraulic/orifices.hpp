@@ -11,9 +11,14 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct laminar_orifice_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using laminar_orifice = laminar_orifice_t<>;
 /// HORL: laminar orifice (linear resistance) q = (p1 - p2) / R from node 1 to node 2.
 /// Pure viscosity: flows q, -q; dF/dv = [1 -1; -1 1] / R.
-struct laminar_orifice {
+template <class>
+struct laminar_orifice_t {
   static constexpr pradis::passport passport{.name = "HORL", .ext = 2, .par = 1, .wrk = 1, .adr = 2, .ign = 3};
   static constexpr std::array<domain, 2> domains{domain::hydraulic, domain::hydraulic};
   static constexpr element_help help{.title = "laminar orifice (linear hydraulic resistance)",
@@ -27,7 +32,7 @@ struct laminar_orifice {
     double resistance = 0;  ///< R [Pa s/m^3]
   };
   parameters p;
-  explicit laminar_orifice(parameters q) : p(q) {}
+  explicit laminar_orifice_t(parameters q) : p(q) {}
   /// Example parameters (scaled units).
   static parameters example() { return {4.0}; }
   static laminar_orifice from_parameters(std::span<const double> v) { return laminar_orifice({v[0]}); }
@@ -43,12 +48,17 @@ struct laminar_orifice {
   }
 };
 
+template <class = void>
+struct turbulent_orifice_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using turbulent_orifice = turbulent_orifice_t<>;
 /// HORT: turbulent (sharp-edged) orifice q = Cd A sqrt(2 |dp| / rho) sign(dp), dp = p1 - p2,
 /// regularised near dp = 0 with the transition pressure dpt:
 ///   q = Cd A sqrt(2 / rho) dp / (dp^2 + dpt^2)^(1/4)
 /// (finite slope Cd A sqrt(2 / rho) / sqrt(dpt) at dp = 0; relative deviation from the
 /// square-root law below dpt^2 / (4 dp^2); docs/domains.md).
-struct turbulent_orifice {
+template <class>
+struct turbulent_orifice_t {
   static constexpr pradis::passport passport{.name = "HORT", .ext = 2, .par = 4, .wrk = 1, .adr = 2, .ign = 3};
   static constexpr std::array<domain, 2> domains{domain::hydraulic, domain::hydraulic};
   static constexpr element_help help{
@@ -67,7 +77,7 @@ struct turbulent_orifice {
     double transition = 1e3;   ///< dpt [Pa]
   };
   parameters p;
-  explicit turbulent_orifice(parameters q) : p(q) {}
+  explicit turbulent_orifice_t(parameters q) : p(q) {}
   /// Example parameters (scaled units: the all-elements test's pressures of +-10 cross the transition at 1).
   static parameters example() { return {0.7, 0.5, 2.0, 1.0}; }
   static turbulent_orifice from_parameters(std::span<const double> v) {

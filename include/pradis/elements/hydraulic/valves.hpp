@@ -68,8 +68,13 @@ struct spool_valve_parameters {
   double leakage_area = 0;  ///< Al [m^2]
 };
 
+template <class = void>
+struct valve_22_t;
+/// The element type valve_22_t<> (a class template so that a unit compiles its members only if it uses them).
+using valve_22 = valve_22_t<>;
 /// HV22: 2/2 proportional valve: q = Cd (Al + Amax c(x / xmax)) sqrt(2/rho) r(p1 - p2).
-struct valve_22 {
+template <class>
+struct valve_22_t {
   static constexpr pradis::passport passport{.name = "HV22", .ext = 3, .par = 6, .wrk = 2, .adr = 1, .ign = 3};
   static constexpr std::array<domain, 3> domains{domain::hydraulic, domain::hydraulic, domain::mechanical};
   static constexpr element_help help{
@@ -85,7 +90,7 @@ struct valve_22 {
                  "equation from the valve (drive it or give it dynamics)"};
   using parameters = spool_valve_parameters;
   parameters p;
-  explicit valve_22(parameters q) : p(q) {}
+  explicit valve_22_t(parameters q) : p(q) {}
   /// Example parameters (scaled units).
   static parameters example() { return {0.7, 0.5, 2.0, 1.0, 2.0, 0.05}; }
   static valve_22 from_parameters(std::span<const double> v) { return valve_22({v[0], v[1], v[2], v[3], v[4], v[5]}); }
@@ -104,10 +109,15 @@ struct valve_22 {
   }
 };
 
+template <class = void>
+struct valve_43_t;
+/// The element type valve_43_t<> (a class template so that a unit compiles its members only if it uses them).
+using valve_43 = valve_43_t<>;
 /// HV43: 4/3 proportional (servo) valve, critical centre, ports P, T, A, B and spool x.
 /// With s = x / xmax: for s > 0 the paths P->A and B->T open with c(s), for s < 0 the paths
 /// P->B and A->T with c(-s); every path has the leakage area Al at every position.
-struct valve_43 {
+template <class>
+struct valve_43_t {
   static constexpr pradis::passport passport{.name = "HV43", .ext = 5, .par = 6, .wrk = 5, .adr = 1, .ign = 3};
   static constexpr std::array<domain, 5> domains{domain::hydraulic, domain::hydraulic, domain::hydraulic,
                                                  domain::hydraulic, domain::mechanical};
@@ -126,7 +136,7 @@ struct valve_43 {
                  "equation from the valve (drive it or give it dynamics)"};
   using parameters = spool_valve_parameters;
   parameters p;
-  explicit valve_43(parameters q) : p(q) {}
+  explicit valve_43_t(parameters q) : p(q) {}
   /// Example parameters (scaled units).
   static parameters example() { return {0.7, 0.5, 2.0, 1.0, 2.0, 0.05}; }
   static valve_43 from_parameters(std::span<const double> v) { return valve_43({v[0], v[1], v[2], v[3], v[4], v[5]}); }
@@ -185,9 +195,14 @@ inline void check_pressure_valve(element_context& ctx, const pressure_valve_para
 }
 }  // namespace hydraulic_detail
 
+template <class = void>
+struct relief_valve_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using relief_valve = relief_valve_t<>;
 /// HRELIEF: pressure relief valve from port 1 (protected line) to port 2 (tank): closed up to
 /// the cracking pressure difference pc (leakage Al only), opening proportionally over dpo.
-struct relief_valve {
+template <class>
+struct relief_valve_t {
   static constexpr pradis::passport passport{.name = "HRELIEF", .ext = 2, .par = 7, .wrk = 2, .adr = 2, .ign = 3};
   static constexpr std::array<domain, 2> domains{domain::hydraulic, domain::hydraulic};
   static constexpr element_help help{
@@ -203,7 +218,7 @@ struct relief_valve {
       .special = "code 100 if Cd, Amax, rho, dpt or dpo is not positive or pc, Al is negative"};
   using parameters = pressure_valve_parameters;
   parameters p;
-  explicit relief_valve(parameters q) : p(q) {}
+  explicit relief_valve_t(parameters q) : p(q) {}
   /// Example parameters (scaled units: cracks at 4, fully open at 7).
   static parameters example() { return {0.7, 0.5, 2.0, 1.0, 4.0, 3.0, 0.01}; }
   static relief_valve from_parameters(std::span<const double> v) {
@@ -215,9 +230,14 @@ struct relief_valve {
   }
 };
 
+template <class = void>
+struct check_valve_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using check_valve = check_valve_t<>;
 /// HCHECK: check (non-return) valve from port 1 to port 2: opens when p1 - p2 exceeds the
 /// cracking pressure pc (fully open at pc + dpo); in reverse only the leakage area Al passes.
-struct check_valve {
+template <class>
+struct check_valve_t {
   static constexpr pradis::passport passport{.name = "HCHECK", .ext = 2, .par = 7, .wrk = 2, .adr = 2, .ign = 3};
   static constexpr std::array<domain, 2> domains{domain::hydraulic, domain::hydraulic};
   static constexpr element_help help{
@@ -233,7 +253,7 @@ struct check_valve {
       .special = "code 100 if Cd, Amax, rho, dpt or dpo is not positive or pc, Al is negative"};
   using parameters = pressure_valve_parameters;
   parameters p;
-  explicit check_valve(parameters q) : p(q) {}
+  explicit check_valve_t(parameters q) : p(q) {}
   /// Example parameters (scaled units: cracks at 0.5, fully open at 2.5).
   static parameters example() { return {0.7, 0.5, 2.0, 0.5, 0.5, 2.0, 0.01}; }
   static check_valve from_parameters(std::span<const double> v) {

@@ -12,13 +12,18 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct hydraulic_volume_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using hydraulic_volume = hydraulic_volume_t<>;
 /// HVOL: a rigid volume V filled with liquid of bulk modulus B and, optionally, a
 /// volume fraction alpha of undissolved air at p = 0 (gauge) that is compressed
 /// polytropically. Flow (the volume flow into the volume):
 ///   q = C(p) dp/dt,  C(p) = V [ (1 - alpha) / B + alpha / (n pa) (pa / (pa + p))^(1 + 1/n) ]
 /// (an inertia block C(p) and, for alpha > 0, a viscous block dC/dp dp/dt).
 /// With alpha = 0, C = V / B and the pressure of a volume fed by q rises as B q t / V.
-struct hydraulic_volume {
+template <class>
+struct hydraulic_volume_t {
   static constexpr pradis::passport passport{.name = "HVOL", .ext = 1, .par = 5, .wrk = 2, .adr = 2, .ign = 0};
   static constexpr std::array<domain, 1> domains{domain::hydraulic};
   static constexpr element_help help{
@@ -42,7 +47,7 @@ struct hydraulic_volume {
     double polytropic = 1.4;   ///< n [-]
   };
   parameters p;
-  explicit hydraulic_volume(parameters q) : p(q) {}
+  explicit hydraulic_volume_t(parameters q) : p(q) {}
   /// Example parameters in scaled units (pressure unit 1, so that the all-elements
   /// test's pressures of +-10 are 1/3 of the ambient pressure and the air matters).
   static parameters example() { return {2.0, 50.0, 0.1, 30.0, 1.4}; }

@@ -13,6 +13,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct belt_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using belt = belt_t<>;
 /// BELT: a belt wrapped at the angle theta around a fixed drum with the friction
 /// coefficient mu. DOF 1 is end 1, DOF 2 end 2; each displacement is positive
 /// when its end moves away from the drum. The belt slides on the drum by s
@@ -29,7 +33,8 @@ namespace pradis::elements {
 /// The forces are continuous in u1, u2 (piecewise linear); the flows are T1, T2
 /// (the belt pulls each end towards the drum). The law is meant for a belt under
 /// tension: a compressed part (T < 0) pushes like a spring.
-struct belt {
+template <class>
+struct belt_t {
   static constexpr pradis::passport passport{.name = "BELT", .ext = 2, .par = 3, .str = 1, .wrk = 4, .adr = 1, .ign = 23};
   static constexpr std::array<pradis::domain, 2> domains{pradis::domain::mechanical, pradis::domain::mechanical};
   static constexpr element_help help{
@@ -56,7 +61,7 @@ struct belt {
     double k = 0;      ///< belt stiffness [N/m]
   };
   parameters p;
-  explicit belt(parameters q) : p(q) {}
+  explicit belt_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {0.3, 3.0, 2e3}; }
   static belt from_parameters(std::span<const double> v) { return belt({v[0], v[1], v[2]}); }

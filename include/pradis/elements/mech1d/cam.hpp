@@ -16,6 +16,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct cam_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using cam = cam_t<>;
 /// CAM: cam rotation theta (DOF 1, rad) and follower displacement y (DOF 2, m,
 /// positive away from the cam). The lift s(theta) is a table over one period,
 /// interpolated by the periodic cubic spline (value, slope and curvature
@@ -28,7 +32,8 @@ namespace pradis::elements {
 /// F pushes the follower (flow -F on y) and brakes the cam with the moment
 /// F s'(theta) (flow F s' on theta): the power F delta' balances. With delta <= 0
 /// the follower has lifted off. Jacobian exact (ADR=1, IGN=3).
-struct cam {
+template <class>
+struct cam_t {
   static constexpr pradis::passport passport{.name = "CAM", .ext = 2, .par = 10, .vpr = 21, .wrk = 3, .adr = 1,
                                              .ign = 3};
   static constexpr std::array<pradis::domain, 2> domains{pradis::domain::mechanical, pradis::domain::mechanical};
@@ -55,7 +60,7 @@ struct cam {
     double c = 0;                 ///< contact damping [N s/m]
     std::vector<double> table{};  ///< theta_1, s_1, theta_2, s_2, ... [rad, m]
   };
-  explicit cam(parameters q) : p(std::move(q)), lift_(p.table) {}
+  explicit cam_t(parameters q) : p(std::move(q)), lift_(p.table) {}
   /// Example parameters: a harmonic lift of 8 mm sampled every 30 degrees, a soft contact.
   static parameters example() {
     parameters q{1e4, 50.0, {}};

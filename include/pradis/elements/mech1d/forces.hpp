@@ -11,10 +11,15 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct constant_force_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using constant_force = constant_force_t<>;
 /// F: constant force P applied to a DOF (positive along the DOF). Its flow, the
 /// force the system applies to the source, is -P. Its (zero) stiffness block is
 /// declared because a passport cannot declare no block at all.
-struct constant_force {
+template <class>
+struct constant_force_t {
   static constexpr pradis::passport passport{.name = "F", .ext = 1, .par = 1, .adr = 1, .ign = 23};
   static constexpr element_help help{.title = "constant force on one DOF",
                                      .name = "Source of constant force (or moment)",
@@ -27,7 +32,7 @@ struct constant_force {
     double force = 0;  ///< P [N]
   };
   parameters p;
-  explicit constant_force(parameters q) : p(q) {}
+  explicit constant_force_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {10.0}; }
   static constant_force from_parameters(std::span<const double> v) { return constant_force({v[0]}); }
@@ -40,8 +45,13 @@ struct constant_force {
   }
 };
 
+template <class = void>
+struct sine_force_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using sine_force = sine_force_t<>;
 /// FSIN: harmonic force P(t) = P0 + A sin(2 pi f t + phase) on a DOF.
-struct sine_force {
+template <class>
+struct sine_force_t {
   static constexpr pradis::passport passport{.name = "FSIN", .ext = 1, .par = 4, .wrk = 1, .adr = 1, .ign = 23};
   static constexpr element_help help{
       .title = "harmonic force on one DOF",
@@ -58,7 +68,7 @@ struct sine_force {
     double offset = 0;     ///< P0 [N]
   };
   parameters p;
-  explicit sine_force(parameters q) : p(q) {}
+  explicit sine_force_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {5.0, 2.0, 30.0, 1.0}; }
   static sine_force from_parameters(std::span<const double> v) { return sine_force({v[0], v[1], v[2], v[3]}); }

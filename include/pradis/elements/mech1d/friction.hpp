@@ -13,6 +13,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct friction_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using friction = friction_t<>;
 /// FRICT: friction between DOFs 1 and 2 with relative displacement d = u2 - u1
 /// and relative velocity v = v2 - v1. F is the friction force, positive when it
 /// opposes a positive v (as a damper's c v); flows -F, F.
@@ -35,7 +39,8 @@ namespace pradis::elements {
 /// step s v / |a| that brings the relative velocity to zero, so a velocity
 /// reversal falls at a step end rather than within a step.
 /// Normal force: give Fs = mu_s N and Fc = mu_k N (forces, not coefficients).
-struct friction {
+template <class>
+struct friction_t {
   static constexpr pradis::passport passport{
       .name = "FRICT", .ext = 2, .par = 7, .str = 3, .wrk = 3, .adr = 1, .ign = 3};
   static constexpr std::array<pradis::domain, 2> domains{pradis::domain::mechanical, pradis::domain::mechanical};
@@ -72,7 +77,7 @@ struct friction {
     double vth = 1e-6;     ///< stick velocity threshold [m/s]
   };
   parameters p;
-  explicit friction(parameters q) : p(q) {}
+  explicit friction_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {10.0, 8.0, 0.5, 0.3, 1e5, 10.0, 1e-3}; }
   static friction from_parameters(std::span<const double> v) {

@@ -13,6 +13,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct gear_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using gear = gear_t<>;
 /// GEAR: gear pair between shaft 1 (rotation phi1) and shaft 2 (phi2) with the
 /// signed ratio r: the ideal mesh keeps phi2 = r phi1 (r < 0 for an external
 /// pair, which reverses the sense of rotation). The mesh gap, in shaft-2 radians,
@@ -24,7 +28,8 @@ namespace pradis::elements {
 /// flow on shaft 1 is -r T, so the torques are in the ratio r and the mesh power
 /// T (phi2' - r phi1') is what the spring stores and the damper dissipates.
 /// Jacobian: K = k [r^2 -r; -r 1], C = c [r^2 -r; -r 1] in contact, 0 in the gap.
-struct gear {
+template <class>
+struct gear_t {
   static constexpr pradis::passport passport{.name = "GEAR", .ext = 2, .par = 4, .wrk = 3, .adr = 1, .ign = 3};
   static constexpr std::array<pradis::domain, 2> domains{pradis::domain::mechanical, pradis::domain::mechanical};
   static constexpr element_help help{
@@ -51,7 +56,7 @@ struct gear {
     double c = 0;          ///< mesh damping [N m s/rad]
   };
   parameters p;
-  explicit gear(parameters q) : p(q) {}
+  explicit gear_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {-2.5, 0.05, 1e4, 5.0}; }
   static gear from_parameters(std::span<const double> v) { return gear({v[0], v[1], v[2], v[3]}); }

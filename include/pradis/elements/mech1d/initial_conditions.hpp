@@ -10,10 +10,15 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct initial_displacement_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using initial_displacement = initial_displacement_t<>;
 /// X0: sets the initial displacement of a DOF at the zero step. Produces no flow.
 /// A different value already set on the DOF by another element is code 90;
 /// changing the value in a later stage ($REPLACE) is code 100.
-struct initial_displacement {
+template <class>
+struct initial_displacement_t {
   static constexpr pradis::passport passport{.name = "X0", .ext = 1, .par = 1, .wrk = 1, .adr = 1, .ign = 23};
   static constexpr element_help help{
       .title = "initial displacement of a DOF",
@@ -28,7 +33,7 @@ struct initial_displacement {
     double u0 = 0;
   };
   parameters p;
-  explicit initial_displacement(parameters q) : p(q) {}
+  explicit initial_displacement_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {0.25}; }
   static initial_displacement from_parameters(std::span<const double> v) { return initial_displacement({v[0]}); }
@@ -47,8 +52,13 @@ struct initial_displacement {
   }
 };
 
+template <class = void>
+struct initial_velocity_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using initial_velocity = initial_velocity_t<>;
 /// V0: sets the initial velocity of a DOF at the zero step. Produces no flow.
-struct initial_velocity {
+template <class>
+struct initial_velocity_t {
   static constexpr pradis::passport passport{.name = "V0", .ext = 1, .par = 1, .wrk = 1, .adr = 1, .ign = 23};
   static constexpr element_help help{
       .title = "initial velocity of a DOF",
@@ -63,7 +73,7 @@ struct initial_velocity {
     double v0 = 0;
   };
   parameters p;
-  explicit initial_velocity(parameters q) : p(q) {}
+  explicit initial_velocity_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {1.5}; }
   static initial_velocity from_parameters(std::span<const double> v) { return initial_velocity({v[0]}); }

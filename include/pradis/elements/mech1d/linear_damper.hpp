@@ -10,9 +10,14 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct linear_damper_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using linear_damper = linear_damper_t<>;
 /// DAMPER: linear damper between DOFs 1 and 2: flows c (v1 - v2), c (v2 - v1).
 /// Pure viscosity (ADR=2, IGN=3): only the velocity block exists.
-struct linear_damper {
+template <class>
+struct linear_damper_t {
   static constexpr pradis::passport passport{.name = "DAMPER", .ext = 2, .par = 1, .wrk = 1, .adr = 2, .ign = 3};
   static constexpr element_help help{.title = "linear viscous damper between two DOFs",
                                      .name = "Linear viscous element between two DOFs",
@@ -25,7 +30,7 @@ struct linear_damper {
     double c = 0;  ///< damping coefficient [N s/m]
   };
   parameters p;
-  explicit linear_damper(parameters q) : p(q) {}
+  explicit linear_damper_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {3.0}; }
   static linear_damper from_parameters(std::span<const double> v) { return linear_damper({v[0]}); }

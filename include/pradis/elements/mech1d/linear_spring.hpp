@@ -10,9 +10,14 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct linear_spring_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using linear_spring = linear_spring_t<>;
 /// SPRING: linear spring between DOFs 1 and 2 (connect DOF 2 to the ground for a
 /// spring to a fixed point): flows k (u1 - u2), k (u2 - u1). Pure stiffness (ADR=1, IGN=23).
-struct linear_spring {
+template <class>
+struct linear_spring_t {
   static constexpr pradis::passport passport{.name = "SPRING", .ext = 2, .par = 1, .wrk = 1, .adr = 1, .ign = 23};
   static constexpr element_help help{.title = "linear spring between two DOFs",
                                      .name = "Linear elastic element between two DOFs",
@@ -25,7 +30,7 @@ struct linear_spring {
     double k = 0;  ///< stiffness [N/m]
   };
   parameters p;
-  explicit linear_spring(parameters q) : p(q) {}
+  explicit linear_spring_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {100.0}; }
   static linear_spring from_parameters(std::span<const double> v) { return linear_spring({v[0]}); }

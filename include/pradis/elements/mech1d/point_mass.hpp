@@ -10,8 +10,13 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct point_mass_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using point_mass = point_mass_t<>;
 /// MASS: inertia m on one DOF; flow m a (ADR=3: pure inertia, standing with one "foot" on the ground).
-struct point_mass {
+template <class>
+struct point_mass_t {
   static constexpr pradis::passport passport{.name = "MASS", .ext = 1, .par = 1, .adr = 3};
   static constexpr element_help help{.title = "point mass on one DOF",
                                      .name = "Point inertia element for one translational or rotational DOF",
@@ -24,7 +29,7 @@ struct point_mass {
     double m = 0;  ///< mass [kg]
   };
   parameters p;
-  explicit point_mass(parameters q) : p(q) {}
+  explicit point_mass_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {2.0}; }
   static point_mass from_parameters(std::span<const double> v) { return point_mass({v[0]}); }

@@ -25,8 +25,13 @@ inline void check_harmonic(element_context& ctx, double a, double f, double ph, 
 }
 }  // namespace detail
 
+template <class = void>
+struct displacement_source_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using displacement_source = displacement_source_t<>;
 /// XSRC: displacement source u(t) = U0 + A sin(2 pi f t + phase).
-struct displacement_source {
+template <class>
+struct displacement_source_t {
   static constexpr pradis::passport passport{.name = "XSRC", .ext = 1, .par = 4, .wrk = 1, .adr = 1, .ign = 23};
   static constexpr element_help help{
       .title = "displacement source on one DOF",
@@ -41,7 +46,7 @@ struct displacement_source {
     double amplitude = 0, frequency = 0, phase_deg = 0, offset = 0;
   };
   parameters p;
-  explicit displacement_source(parameters q) : p(q) {}
+  explicit displacement_source_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {0.1, 2.0, 30.0, 0.5}; }
   static displacement_source from_parameters(std::span<const double> v) {
@@ -62,9 +67,14 @@ struct displacement_source {
   }
 };
 
+template <class = void>
+struct velocity_source_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using velocity_source = velocity_source_t<>;
 /// VSRC: velocity source v(t) = V0 + A sin(2 pi f t + phase), with u(0) = 0 and
 /// u(t) the exact integral V0 t - A (cos(2 pi f t + phase) - cos(phase)) / (2 pi f).
-struct velocity_source {
+template <class>
+struct velocity_source_t {
   static constexpr pradis::passport passport{.name = "VSRC", .ext = 1, .par = 4, .wrk = 1, .adr = 1, .ign = 23};
   static constexpr element_help help{
       .title = "velocity source on one DOF",
@@ -79,7 +89,7 @@ struct velocity_source {
     double amplitude = 0, frequency = 0, phase_deg = 0, offset = 0;
   };
   parameters p;
-  explicit velocity_source(parameters q) : p(q) {}
+  explicit velocity_source_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {0.2, 1.0, 0.0, 0.3}; }
   static velocity_source from_parameters(std::span<const double> v) {

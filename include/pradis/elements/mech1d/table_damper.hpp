@@ -16,6 +16,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct table_damper_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using table_damper = table_damper_t<>;
 /// TDAMPER: F = g(d') + k d between DOFs 1 and 2, d = u2 - u1, d' = v2 - v1,
 /// F positive in tension; flows -F, F (the convention of SPRING and TSPRING).
 /// g is interpolated in a table of (d'_k, F_k) points by tabular_law (piecewise
@@ -24,7 +28,8 @@ namespace pradis::elements {
 ///
 /// Flat parameters (VPR = 21, an even count of at least 6): interpolation
 /// (0 linear, 1 monotone cubic), stiffness k, then v1, F1, v2, F2, ...
-struct table_damper {
+template <class>
+struct table_damper_t {
   static constexpr pradis::passport passport{
       .name = "TDAMPER", .ext = 2, .par = 6, .vpr = 21, .wrk = 2, .adr = 1, .ign = 3};
   static constexpr std::array<pradis::domain, 2> domains{pradis::domain::mechanical, pradis::domain::mechanical};
@@ -49,7 +54,7 @@ struct table_damper {
     std::vector<double> table{};  ///< v1, F1, v2, F2, ... [m/s, N]
   };
   /// Stores the parameters and builds the interpolant (allocates here, never in evaluate).
-  explicit table_damper(parameters q)
+  explicit table_damper_t(parameters q)
       : p(std::move(q)), law_(p.table, p.interpolation == 1 ? interpolation::monotone_cubic : interpolation::linear) {}
   /// Example parameters: a shock absorber, soft in compression, hard in rebound, with a spring.
   static parameters example() { return {1.0, 500.0, {-1.0, -400.0, -0.1, -80.0, 0.0, 0.0, 0.1, 200.0, 1.0, 1200.0}}; }

@@ -15,6 +15,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct table_spring_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using table_spring = table_spring_t<>;
 /// TSPRING: nonlinear spring-damper between DOFs 1 and 2 with the force
 /// F = f(d) + c d', d = u2 - u1 (elongation), F positive in tension; flows -F, F.
 /// f is interpolated in a table of (d_k, F_k) points (tabular_law: piecewise
@@ -23,7 +27,8 @@ namespace pradis::elements {
 ///
 /// Flat parameters (VPR = 21, an even count of at least 6): interpolation
 /// (0 linear, 1 monotone cubic), damping c, then d1, F1, d2, F2, ...
-struct table_spring {
+template <class>
+struct table_spring_t {
   static constexpr pradis::passport passport{
       .name = "TSPRING", .ext = 2, .par = 6, .vpr = 21, .wrk = 2, .adr = 1, .ign = 3};
   static constexpr std::array<pradis::domain, 2> domains{pradis::domain::mechanical, pradis::domain::mechanical};
@@ -49,7 +54,7 @@ struct table_spring {
     std::vector<double> table{};  ///< d1, F1, d2, F2, ... [m, N]
   };
   /// Stores the parameters and builds the interpolant (allocates here, never in evaluate).
-  explicit table_spring(parameters q)
+  explicit table_spring_t(parameters q)
       : p(std::move(q)), law_(p.table, p.interpolation == 1 ? interpolation::monotone_cubic : interpolation::linear) {}
   /// Example parameters (used by `pradis check` and the all-elements test): a
   /// stiffening piecewise-linear law with damping.

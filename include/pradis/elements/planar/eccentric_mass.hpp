@@ -11,6 +11,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct eccentric_mass_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using eccentric_mass = eccentric_mass_t<>;
 /// MEKS: a point mass m at distance R from the point whose DOFs are x, y and the
 /// rotation theta; the radius makes the angle theta + alpha with the X axis.
 /// Flows (the inertial forces, full three-block Jacobian, ADR=1 IGN=0):
@@ -20,7 +24,8 @@ namespace pradis::elements {
 /// The manual's listing omits the second term of M_z (the moment of the
 /// translational inertia forces); pradis keeps it, so that the mass matrix is
 /// symmetric and the kinetic energy m |p'|^2 / 2 of the point is conserved.
-struct eccentric_mass {
+template <class>
+struct eccentric_mass_t {
   static constexpr pradis::passport passport{.name = "MEKS", .ext = 3, .par = 3, .adr = 1, .ign = 0};
   static constexpr element_help help{
       .title = "point mass with eccentricity in plane motion",
@@ -42,7 +47,7 @@ struct eccentric_mass {
   };
   parameters p;
 
-  explicit eccentric_mass(parameters q) : p(q) {}
+  explicit eccentric_mass_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {1.5, 0.2, 30.0}; }
   static eccentric_mass from_parameters(std::span<const double> v) { return eccentric_mass({v[0], v[1], v[2]}); }

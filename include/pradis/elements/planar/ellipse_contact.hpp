@@ -17,6 +17,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct ellipse_contact_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using ellipse_contact = ellipse_contact_t<>;
 /// ELLPL: an ellipse carried by a planar body (DOFs dx, dy, dphi of its centre,
 /// as MD's) against a fixed polyline (x1, y1), (x2, y2), ... Each segment is a
 /// contact point with its own state (STP): the ellipse may touch several
@@ -42,7 +46,8 @@ namespace pradis::elements {
 /// A new contact slips if its tangential velocity is not zero. Flows stay
 /// smooth within a step (the mode only changes between steps); the switch is
 /// at most one step late.
-struct ellipse_contact {
+template <class>
+struct ellipse_contact_t {
   static constexpr pradis::passport passport{.name = "ELLPL", .ext = 3, .par = 16, .vpr = 21, .str = 4, .stp = 2,
                                              .wrk = 8, .wrp = 2, .adr = 1, .ign = 3};
   static constexpr std::array<pradis::domain, 3> domains{pradis::domain::mechanical, pradis::domain::mechanical,
@@ -94,7 +99,7 @@ struct ellipse_contact {
     std::vector<double> polyline{};    ///< x1, y1, x2, y2, ... [m]
   };
   /// Stores the parameters and the segments (allocates here, never in evaluate).
-  explicit ellipse_contact(parameters q) : p(std::move(q)) {
+  explicit ellipse_contact_t(parameters q) : p(std::move(q)) {
     for (std::size_t i = 0; i + 3 < p.polyline.size(); i += 2)
       seg_.push_back(detail::contact_segment::between(p.polyline[i], p.polyline[i + 1], p.polyline[i + 2],
                                                       p.polyline[i + 3]));

@@ -10,10 +10,15 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct planar_inertia_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using planar_inertia = planar_inertia_t<>;
 /// MD: point inertia in plane motion: mass m on the X and Y DOFs, moment of
 /// inertia J about the centre of mass on the rotation DOF. Pure inertia (ADR=3):
 /// flows (m a_x, m a_y, J eps), Jacobian dF/da = diag(m, m, J).
-struct planar_inertia {
+template <class>
+struct planar_inertia_t {
   static constexpr pradis::passport passport{.name = "MD", .ext = 3, .par = 2, .adr = 3};
   static constexpr element_help help{
       .title = "point inertia in plane motion",
@@ -33,7 +38,7 @@ struct planar_inertia {
   };
   parameters p;
 
-  explicit planar_inertia(parameters q) : p(q) {}
+  explicit planar_inertia_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {2.0, 0.1}; }
   static planar_inertia from_parameters(std::span<const double> v) { return planar_inertia({v[0], v[1]}); }

@@ -10,10 +10,15 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct planar_link_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using planar_link = planar_link_t<>;
 /// LINKD: linear elastic link between two points A and B moving in a plane,
 /// working in tension and compression. Flows (forces the system applies to the
 /// link): F_A = -k (L - L0) e, F_B = -F_A, with e = (B - A) / L.
-struct planar_link {
+template <class>
+struct planar_link_t {
   static constexpr pradis::passport passport{
       .name = "LINKD", .ext = 4, .par = 5, .str = 2, .wrk = 3, .adr = 1, .ign = 23};
   static constexpr element_help help{
@@ -44,7 +49,7 @@ struct planar_link {
   };
   parameters p;
 
-  explicit planar_link(parameters q) : p(q) {}
+  explicit planar_link_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {0.0, 0.0, 1.0, 0.5, 5e3}; }
   static planar_link from_parameters(std::span<const double> v) { return planar_link({v[0], v[1], v[2], v[3], v[4]}); }

@@ -10,6 +10,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct planar_pin_joint_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using planar_pin_joint = planar_pin_joint_t<>;
 /// PIN2X: holds point A of body a (node x_a, y_a, theta_a) on point B of body b
 /// exactly. A point's position is p = X0 + x + R(theta) r, r its offset from the
 /// node at theta = 0. The pin force lambda = (lambda_x, lambda_y) is a pair of
@@ -22,7 +26,8 @@ namespace pradis::elements {
 /// dM_b/dtheta_b = -rho_B . lambda (d rho / d theta = (-rho_y, rho_x)), the
 /// constraint rows [-I, -d rho_A/d theta, I, d rho_B/d theta] and the multiplier
 /// columns in C. The rows have a zero diagonal (see LINKX).
-struct planar_pin_joint {
+template <class>
+struct planar_pin_joint_t {
   static constexpr pradis::passport passport{
       .name = "PIN2X", .ext = 6, .ent = 2, .par = 8, .wrk = 3, .adr = 1, .ign = 3};
   static constexpr element_help help{
@@ -59,7 +64,7 @@ struct planar_pin_joint {
   };
   parameters p;
 
-  explicit planar_pin_joint(parameters q) : p(q) {}
+  explicit planar_pin_joint_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {0.1, -0.2, 0.3, 0.25, 0.5, 0.4, -0.2, 0.3}; }
   static planar_pin_joint from_parameters(std::span<const double> v) {

@@ -15,6 +15,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct planar_rigid_link_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using planar_rigid_link = planar_rigid_link_t<>;
 /// LINKX: rigid massless link between two points A and B moving in a plane. The
 /// axial force N (positive in tension) is an internal DOF: its velocity-level
 /// unknown v_N = N, the Newton unknown like every velocity. Flows:
@@ -32,7 +36,8 @@ namespace pradis::elements {
 /// the length stays L0 to the Newton tolerance at every step, without drift;
 /// the multiplier oscillates under undamped NEWMARK at large steps: use HHT or
 /// generalized-alpha for models with many links (docs/joints.md).
-struct planar_rigid_link {
+template <class>
+struct planar_rigid_link_t {
   static constexpr pradis::passport passport{
       .name = "LINKX", .ext = 4, .ent = 1, .par = 4, .str = 2, .wrk = 3, .adr = 1, .ign = 3};
   static constexpr element_help help{
@@ -69,7 +74,7 @@ struct planar_rigid_link {
   };
   parameters p;
 
-  explicit planar_rigid_link(parameters q) : p(q) {}
+  explicit planar_rigid_link_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {0.0, 0.0, 1.0, 0.5}; }
   static planar_rigid_link from_parameters(std::span<const double> v) {

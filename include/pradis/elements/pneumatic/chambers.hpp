@@ -19,9 +19,14 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct gas_chamber_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using gas_chamber = gas_chamber_t<>;
 /// PNVOL: gas chamber of fixed volume V on one pneumatic node: q = V rho'(P) P'.
 /// Sets the node's initial gauge pressure p0 at the zero step. Blocks C and M.
-struct gas_chamber {
+template <class>
+struct gas_chamber_t {
   static constexpr pradis::passport passport{.name = "PNVOL", .ext = 1, .par = 4, .wrk = 4, .adr = 2};
   static constexpr std::array<domain, 1> domains{domain::pneumatic};
   static constexpr element_help help{
@@ -43,7 +48,7 @@ struct gas_chamber {
     double t0 = pneumatic::anr_temperature;           ///< initial temperature [K]
   };
   parameters p;
-  explicit gas_chamber(parameters q) : p(q) {}
+  explicit gas_chamber_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test: a large
   /// volume makes the Jacobian entries large against the checker's absolute floor).
   static parameters example() { return {1e4, 1.4, 2e5, 300.0}; }
@@ -70,11 +75,16 @@ struct gas_chamber {
   }
 };
 
+template <class = void>
+struct gas_piston_chamber_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using gas_piston_chamber = gas_piston_chamber_t<>;
 /// PNCHP: gas chamber closed by a piston of area A: volume V = V0 + A x (x the
 /// piston's displacement, positive enlarging the chamber). Mass flow q = V rho' P' +
 /// rho A x'; the gas pushes the piston with the force A v (gauge), so the flow on the
 /// piston DOF is -A v. Sets the node's initial gauge pressure p0. Blocks K, C, M.
-struct gas_piston_chamber {
+template <class>
+struct gas_piston_chamber_t {
   static constexpr pradis::passport passport{.name = "PNCHP", .ext = 2, .par = 5, .wrk = 6, .adr = 1};
   static constexpr std::array<domain, 2> domains{domain::pneumatic, domain::mechanical};
   static constexpr element_help help{
@@ -97,7 +107,7 @@ struct gas_piston_chamber {
     double t0 = pneumatic::anr_temperature;  ///< initial temperature [K]
   };
   parameters p;
-  explicit gas_piston_chamber(parameters q) : p(q) {}
+  explicit gas_piston_chamber_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test: a large dead volume
   /// gives sizeable Jacobian entries, a moderate area keeps the flows, and so the round-off of
   /// the differences, small; tests/pneumatic checks realistic sizes with scaled steps).
@@ -135,11 +145,16 @@ struct gas_piston_chamber {
   }
 };
 
+template <class = void>
+struct pneumatic_cylinder_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using pneumatic_cylinder = pneumatic_cylinder_t<>;
 /// PNCYL: double-acting pneumatic cylinder: chamber A (piston side, area A1, volume
 /// VA0 + A1 x) and chamber B (rod side, annulus area A2, volume VB0 - A2 x) on one
 /// rod displacement x; rod force F = A1 vA - A2 vB (gauge pressures), flow -F on the
 /// rod DOF. Both chambers start at the gauge pressure p0. Blocks K, C, M.
-struct pneumatic_cylinder {
+template <class>
+struct pneumatic_cylinder_t {
   static constexpr pradis::passport passport{.name = "PNCYL", .ext = 3, .par = 7, .wrk = 5, .adr = 1};
   static constexpr std::array<domain, 3> domains{domain::pneumatic, domain::pneumatic, domain::mechanical};
   static constexpr element_help help{
@@ -165,7 +180,7 @@ struct pneumatic_cylinder {
     double t0 = pneumatic::anr_temperature;  ///< initial temperature [K]
   };
   parameters p;
-  explicit pneumatic_cylinder(parameters q) : p(q) {}
+  explicit pneumatic_cylinder_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test; see PNCHP).
   static parameters example() { return {0.1, 0.08, 100.0, 100.0, 1.4, 1e5, 300.0}; }
   static pneumatic_cylinder from_parameters(std::span<const double> v) {

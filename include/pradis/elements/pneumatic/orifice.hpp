@@ -17,6 +17,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct pneumatic_orifice_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using pneumatic_orifice = pneumatic_orifice_t<>;
 /// PNORF: orifice between nodes 1 and 2 with the ISO 6358 law (sonic conductance C,
 /// critical pressure ratio b). With P_up > P_dn the upstream and downstream absolute
 /// pressures, r = P_dn / P_up and y = (1 - r) / (1 - b):
@@ -29,7 +33,8 @@ namespace pradis::elements {
 /// So q is C1 everywhere, linear in dp = P1 - P2 near dp = 0 with the finite slope
 /// C rho0 sqrt(T0/T) a / (1 - b) (the same from both sides, independent of P_up), and
 /// monotonic. Reverse flow (P2 > P1) uses the same law with the roles exchanged.
-struct pneumatic_orifice {
+template <class>
+struct pneumatic_orifice_t {
   static constexpr pradis::passport passport{.name = "PNORF", .ext = 2, .par = 4, .wrk = 2, .adr = 2, .ign = 3};
   static constexpr std::array<domain, 2> domains{domain::pneumatic, domain::pneumatic};
   static constexpr element_help help{
@@ -50,7 +55,7 @@ struct pneumatic_orifice {
     double b_lam = 0.999;                   ///< laminar pressure ratio
   };
   parameters p;
-  explicit pneumatic_orifice(parameters q) : p(q) {}
+  explicit pneumatic_orifice_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test: b_lam close to 1
   /// so that the random states, within +-20 Pa of each other, reach the subsonic law).
   static parameters example() { return {1e-3, 0.3, 300.0, 0.99999}; }

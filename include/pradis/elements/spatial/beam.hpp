@@ -18,6 +18,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct elastic_beam_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using elastic_beam = elastic_beam_t<>;
 /// BEAM3: elastic beam between the points A (x, y, z and rotational node qa) and B
 /// (x, y, z and rotational node qb); corotational Euler-Bernoulli formulation (large
 /// displacements and rotations, small strains). The element frame follows the chord
@@ -31,7 +35,8 @@ namespace pradis::elements {
 /// global rotation phi_b of end B gives d(flows)/d(chord, phi_b), objectivity gives
 /// d(flows)/d(phi_a); the chain through phi = (2/s) E(q) q is applied by hand. The reference configuration is the
 /// one with identity nodal quaternions; the section's local y axis is given by a vector.
-struct elastic_beam {
+template <class>
+struct elastic_beam_t {
   static constexpr pradis::passport passport{.name = "BEAM3", .ext = 12, .ent = 2, .par = 15, .wrk = 3, .adr = 1, .ign = 23};
   /// q1..q3 of node A are local DOFs 4..6 (0-based 3..5) with the hidden q4 at 13 (12);
   /// those of node B at 10..12 (9..11) with q4 at 14 (13).
@@ -83,7 +88,7 @@ struct elastic_beam {
   };
   parameters p;
 
-  explicit elastic_beam(parameters q) : p(q) {}
+  explicit elastic_beam_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test): an
   /// oblique beam with an unsymmetric section.
   static parameters example() { return {2e2, 80, 0.5, 0.2, 0.1, 0.15, 0.1, -0.2, 0.3, 3.0, 1.5, -1.0, 0.2, 0.3, 1.0}; }

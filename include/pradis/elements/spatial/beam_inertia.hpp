@@ -17,6 +17,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct beam_inertia_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using beam_inertia = beam_inertia_t<>;
 /// BEAMI3: inertia of a straight beam of density rho and section A, Iy, Iz, J
 /// between the points A and B with rotational nodes qa, qb (same DOFs as BEAM3).
 /// Translations: the consistent mass of linearly interpolated positions,
@@ -27,7 +31,8 @@ namespace pradis::elements {
 /// are those of a rigid body without mass (BODY3): n = A alpha + omega x (A omega),
 /// A = R J_node R^T. The Hermite mass of the bending field is not used: it would
 /// couple translations with the rotations of a moving frame.
-struct beam_inertia {
+template <class>
+struct beam_inertia_t {
   static constexpr pradis::passport passport{.name = "BEAMI3", .ext = 12, .ent = 2, .par = 14, .wrk = 1, .adr = 1, .ign = 0};
   /// The rotational slots as BEAM3.
   static constexpr std::array<rotation_slot, 2> rotation_nodes{{{3, 12}, {9, 13}}};
@@ -63,7 +68,7 @@ struct beam_inertia {
   };
   parameters p;
 
-  explicit beam_inertia(parameters q) : p(q) {}
+  explicit beam_inertia_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {7.0, 0.5, 0.2, 0.1, 0.3, 0.1, -0.2, 0.3, 3.0, 1.5, -1.0, 0.2, 0.3, 1.0}; }
   static beam_inertia from_parameters(std::span<const double> v) {

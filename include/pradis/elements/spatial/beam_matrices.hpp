@@ -41,7 +41,8 @@ struct beam_matrices {
 /// n BEAM3 + BEAMI3 in small deformation. Throws pradis::error (invalid_model) for
 /// n < 1, a zero length, a section vector along the axis or a non-positive or
 /// non-finite property.
-inline beam_matrices straight_beam_matrices(const beam_section& s, const spatial::vec3& a, const spatial::vec3& b,
+template <class = void>  // compiled only in units that call it
+beam_matrices straight_beam_matrices(const beam_section& s, const spatial::vec3& a, const spatial::vec3& b,
                                             const spatial::vec3& v, int n) {
   const std::string f = "straight_beam_matrices: ";
   if (n < 1) throw error(error_code::invalid_model, f + "the number of elements " + std::to_string(n) + " must be >= 1");

@@ -17,6 +17,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct shaft_coupling_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using shaft_coupling = shaft_coupling_t<>;
 /// SHC3: a short elastic shaft along the fixed global unit axis a. End 1 is a
 /// one-dimensional rotational DOF phi (an angle about a, flow: torque about a); end 2 is
 /// a spatial rotational node q = (v, w) (q1..q3 external, hidden q4 = w). The node's
@@ -40,7 +44,8 @@ namespace pradis::elements {
 /// about a as long as the node does not swing away from a. The twist is undefined where
 /// the node has turned 180 degrees about an axis perpendicular to a (t = w = 0): code 75.
 /// K (phi and q columns, q4 included) and C, exact (IGN = 3).
-struct shaft_coupling {
+template <class>
+struct shaft_coupling_t {
   static constexpr pradis::passport passport{.name = "SHC3", .ext = 4, .ent = 1, .par = 6, .wrk = 3, .adr = 1, .ign = 3};
   /// q1..q3 are local DOFs 2..4 (0-based 1..3), the hidden q4 the internal DOF 5 (4).
   static constexpr std::array<rotation_slot, 1> rotation_nodes{{{1, 4}}};
@@ -78,7 +83,7 @@ struct shaft_coupling {
   };
   parameters p;
 
-  explicit shaft_coupling(parameters q) : p(q) {}
+  explicit shaft_coupling_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {1.0, 2.0, -2.0, 400.0, 3.0, 0.1}; }
   static shaft_coupling from_parameters(std::span<const double> v) {

@@ -53,10 +53,14 @@ void add_frame_rows(const joint_bodies& s, const joint_frame& fa, const joint_fr
   work[w + 1] = std::atan2(na.dot(tb), ta.dot(tb));
 }
 
+template <class = void>
+struct prismatic_kind_t;
+using prismatic_kind = prismatic_kind_t<>;
 /// PRI3X's rows: two line rows that keep B on the axis through A along
 /// E_a = R_a e_a, and the three frame rows (add_frame_rows). Body b slides along
 /// the axis only.
-struct prismatic_kind {
+template <class>
+struct prismatic_kind_t {
   static constexpr pradis::passport passport{
       .name = "PRI3X", .ext = 12, .ent = 7, .par = 24, .wrk = 10, .adr = 1, .ign = 3};
   static constexpr element_help help{
@@ -84,7 +88,7 @@ struct prismatic_kind {
   using parameters = two_frame_parameters;
   parameters p;
   joint_frame fa, fb;  ///< the joint frames of a and b (unit vectors)
-  explicit prismatic_kind(parameters q) : p(q), fa(q.frame_a()), fb(q.frame_b()) {}
+  explicit prismatic_kind_t(parameters q) : p(q), fa(q.frame_a()), fb(q.frame_b()) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() {
     return {joint_geometry{0.1, -0.2, 0.3, 0.2, 0.1, -0.15, 1.2, 0.4, -0.5, -0.1, 0.25, 0.2},
@@ -103,9 +107,13 @@ struct prismatic_kind {
   }
 };
 
+template <class = void>
+struct fixed_kind_t;
+using fixed_kind = fixed_kind_t<>;
 /// FIX3X's rows: the point constraint and the three frame rows: body b is welded
 /// to body a.
-struct fixed_kind {
+template <class>
+struct fixed_kind_t {
   static constexpr pradis::passport passport{
       .name = "FIX3X", .ext = 12, .ent = 8, .par = 24, .wrk = 9, .adr = 1, .ign = 3};
   static constexpr element_help help{
@@ -132,7 +140,7 @@ struct fixed_kind {
   using parameters = two_frame_parameters;
   parameters p;
   joint_frame fa, fb;  ///< the joint frames of a and b (unit vectors)
-  explicit fixed_kind(parameters q) : p(q), fa(q.frame_a()), fb(q.frame_b()) {}
+  explicit fixed_kind_t(parameters q) : p(q), fa(q.frame_a()), fb(q.frame_b()) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return prismatic_kind::example(); }
   void check(element_context& ctx) const { p.check(ctx); }
@@ -144,9 +152,13 @@ struct fixed_kind {
   }
 };
 
+template <class = void>
+struct point_on_line_kind_t;
+using point_on_line_kind = point_on_line_kind_t<>;
 /// PTL3X's rows: two line rows that keep B on the line through A along
 /// R_a e (a bead on a wire); b's rotation is free.
-struct point_on_line_kind {
+template <class>
+struct point_on_line_kind_t {
   static constexpr pradis::passport passport{
       .name = "PTL3X", .ext = 12, .ent = 4, .par = 15, .wrk = 5, .adr = 1, .ign = 3};
   static constexpr element_help help{
@@ -172,7 +184,9 @@ struct point_on_line_kind {
   using parameters = one_axis_parameters;
   parameters p;
   spatial::vec3 e, n1, n2;  ///< unit direction and two unit normals
-  explicit point_on_line_kind(parameters q) : p(q), e(unit_axis(q.axis())) { std::tie(n1, n2) = perpendicular_pair(e); }
+  explicit point_on_line_kind_t(parameters q) : p(q), e(unit_axis(q.axis())) {
+    std::tie(n1, n2) = perpendicular_pair(e);
+  }
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() {
     return {joint_geometry{0.1, -0.2, 0.3, 0.2, 0.1, -0.15, 1.2, 0.4, -0.5, -0.1, 0.25, 0.2}, 0.3, -0.5, 0.8};
@@ -189,9 +203,13 @@ struct point_on_line_kind {
   }
 };
 
+template <class = void>
+struct point_on_plane_kind_t;
+using point_on_plane_kind = point_on_plane_kind_t<>;
 /// PTP3X's row: one line row that keeps B on the plane through A normal to R_a n
 /// (frictionless contact that never lifts off); b's rotation is free.
-struct point_on_plane_kind {
+template <class>
+struct point_on_plane_kind_t {
   static constexpr pradis::passport passport{
       .name = "PTP3X", .ext = 12, .ent = 3, .par = 15, .wrk = 4, .adr = 1, .ign = 3};
   static constexpr element_help help{
@@ -216,7 +234,7 @@ struct point_on_plane_kind {
   using parameters = one_axis_parameters;
   parameters p;
   spatial::vec3 n;  ///< unit normal
-  explicit point_on_plane_kind(parameters q) : p(q), n(unit_axis(q.axis())) {}
+  explicit point_on_plane_kind_t(parameters q) : p(q), n(unit_axis(q.axis())) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return point_on_line_kind::example(); }
   void check(element_context& ctx) const { check_joint_vector(ctx, "normal n", p.ex, p.ey, p.ez); }

@@ -38,8 +38,12 @@ namespace pradis::elements {
 
 namespace detail {
 
+template <class = void>
+struct spherical_kind_t;
+using spherical_kind = spherical_kind_t<>;
 /// SPH3X's rows: the point constraint p_B - p_A = 0 (multipliers: the force).
-struct spherical_kind {
+template <class>
+struct spherical_kind_t {
   static constexpr pradis::passport passport{
       .name = "SPH3X", .ext = 12, .ent = 5, .par = 12, .wrk = 4, .adr = 1, .ign = 3};
   static constexpr element_help help{
@@ -62,7 +66,7 @@ struct spherical_kind {
   static constexpr int force_work = 1, moment_work = -1;
   using parameters = point_joint_parameters;
   parameters p;
-  explicit spherical_kind(parameters q) : p(q) {}
+  explicit spherical_kind_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() {
     return {joint_geometry{0.1, -0.2, 0.3, 0.2, 0.1, -0.15, 1.2, 0.4, -0.5, -0.1, 0.25, 0.2}};
@@ -74,10 +78,14 @@ struct spherical_kind {
   }
 };
 
+template <class = void>
+struct revolute_kind_t;
+using revolute_kind = revolute_kind_t<>;
 /// REV3X's rows: the point constraint and two perpendicular rows n_i . u_B = 0
 /// that keep b's hinge axis u_B = R_b e_b along a's u_A = R_a e_a (n_1, n_2
 /// perpendicular to e_a in a).
-struct revolute_kind {
+template <class>
+struct revolute_kind_t {
   static constexpr pradis::passport passport{
       .name = "REV3X", .ext = 12, .ent = 7, .par = 18, .wrk = 8, .adr = 1, .ign = 3};
   static constexpr element_help help{
@@ -105,7 +113,7 @@ struct revolute_kind {
   using parameters = two_axis_parameters;
   parameters p;
   spatial::vec3 ea, n1, n2, eb;  ///< unit e_a, two unit vectors perpendicular to it, unit e_b
-  explicit revolute_kind(parameters q) : p(q), ea(unit_axis(q.axis_a())), eb(unit_axis(q.axis_b())) {
+  explicit revolute_kind_t(parameters q) : p(q), ea(unit_axis(q.axis_a())), eb(unit_axis(q.axis_b())) {
     std::tie(n1, n2) = perpendicular_pair(ea);
   }
   /// Example parameters (used by `pradis check` and the all-elements test).
@@ -128,10 +136,14 @@ struct revolute_kind {
   }
 };
 
+template <class = void>
+struct universal_kind_t;
+using universal_kind = universal_kind_t<>;
 /// UNI3X's rows: the point constraint and one perpendicular row
 /// (R_a e_a) . (R_b e_b) = 0 that keeps the two cross axes of the spider at a
 /// right angle (a Cardan joint).
-struct universal_kind {
+template <class>
+struct universal_kind_t {
   static constexpr pradis::passport passport{
       .name = "UNI3X", .ext = 12, .ent = 6, .par = 18, .wrk = 8, .adr = 1, .ign = 3};
   static constexpr element_help help{
@@ -160,7 +172,7 @@ struct universal_kind {
   using parameters = two_axis_parameters;
   parameters p;
   spatial::vec3 ea, eb;  ///< unit cross axes
-  explicit universal_kind(parameters q) : p(q), ea(unit_axis(q.axis_a())), eb(unit_axis(q.axis_b())) {}
+  explicit universal_kind_t(parameters q) : p(q), ea(unit_axis(q.axis_a())), eb(unit_axis(q.axis_b())) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() {
     return {joint_geometry{0.1, -0.2, 0.3, 0.2, 0.1, -0.15, 1.2, 0.4, -0.5, -0.1, 0.25, 0.2}, 0.3, -0.5, 0.8, 0.8, 0.6,
@@ -179,11 +191,15 @@ struct universal_kind {
   }
 };
 
+template <class = void>
+struct cylindrical_kind_t;
+using cylindrical_kind = cylindrical_kind_t<>;
 /// CYL3X's rows: two line rows n_i . (p_B - p_A) = 0 that keep B on the axis
 /// through A along u_A = R_a e_a, and two perpendicular rows n_i . u_B = 0 that
 /// keep u_B = R_b e_b along u_A (n_1, n_2 perpendicular to e_a in a). Body b
 /// slides along and turns about the axis.
-struct cylindrical_kind {
+template <class>
+struct cylindrical_kind_t {
   static constexpr pradis::passport passport{
       .name = "CYL3X", .ext = 12, .ent = 6, .par = 18, .wrk = 9, .adr = 1, .ign = 3};
   static constexpr element_help help{
@@ -211,7 +227,7 @@ struct cylindrical_kind {
   using parameters = two_axis_parameters;
   parameters p;
   spatial::vec3 ea, n1, n2, eb;  ///< unit e_a, two unit vectors perpendicular to it, unit e_b
-  explicit cylindrical_kind(parameters q) : p(q), ea(unit_axis(q.axis_a())), eb(unit_axis(q.axis_b())) {
+  explicit cylindrical_kind_t(parameters q) : p(q), ea(unit_axis(q.axis_a())), eb(unit_axis(q.axis_b())) {
     std::tie(n1, n2) = perpendicular_pair(ea);
   }
   /// Example parameters (used by `pradis check` and the all-elements test).

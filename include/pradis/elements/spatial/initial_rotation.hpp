@@ -13,12 +13,17 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct initial_rotation_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using initial_rotation = initial_rotation_t<>;
 /// ROT0: sets the initial orientation of a spatial rotational node, a rotation by
 /// `angle` about `axis` (global axes), and its initial global angular velocity omega:
 /// q = (e sin(angle/2), cos(angle/2)) and q' = (1/2) E(q)^T omega (so q . q' = 0).
 /// It writes the hidden q4 and q4' always, and q1..q3 and their rates where they are
 /// not zero (a zero component may be fixed to the ground). Produces no flow.
-struct initial_rotation {
+template <class>
+struct initial_rotation_t {
   static constexpr pradis::passport passport{.name = "ROT0", .ext = 3, .ent = 1, .par = 7, .wrk = 4, .adr = 1, .ign = 23};
   /// q1..q3 are local DOFs 1..3, the hidden q4 the internal DOF 4.
   static constexpr std::array<rotation_slot, 1> rotation_nodes{{{0, 3}}};
@@ -49,7 +54,7 @@ struct initial_rotation {
   };
   parameters p;
 
-  explicit initial_rotation(parameters q) : p(q) {}
+  explicit initial_rotation_t(parameters q) : p(q) {}
   /// Parameters from an initial rotation matrix (body -> global) and a global angular velocity.
   static parameters from_matrix(const spatial::mat3& r, const spatial::vec3& omega = spatial::vec3::Zero()) {
     const spatial::axis_angle aa = spatial::to_axis_angle(spatial::from_matrix(r));

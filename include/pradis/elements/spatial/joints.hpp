@@ -125,13 +125,18 @@ inline void check_hinge_axis(element_context& ctx, const char* which, double x, 
 }
 }  // namespace detail
 
+template <class = void>
+struct spherical_joint_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using spherical_joint = spherical_joint_t<>;
 /// SPH3: spherical (ball) joint between point A of body a and point B of body b, as a
 /// stiff isotropic spring-damper on the gap d = p_B - p_A (p = X0 + x + R(q) r, see
 /// SD3): F = k d + c d', -F on A's x, y, z and -rho_A x F on A's q1..q3, +F and
 /// rho_B x F on B's. A transmitted force F opens the gap by |F| / k: k is a penalty
 /// parameter, to be chosen so that this is negligible (and c ~ 0.1 ... 1 x 2 sqrt(k m)
 /// to damp the joint's own stiff mode, whose frequency is about sqrt(k / m)).
-struct spherical_joint {
+template <class>
+struct spherical_joint_t {
   static constexpr pradis::passport passport{.name = "SPH3", .ext = 12, .ent = 2, .par = 14, .wrk = 4, .adr = 1, .ign = 3};
   /// A's q1..q3 at local 3..5 with hidden q4 at 12; B's at 9..11 with q4 at 13.
   static constexpr std::array<rotation_slot, 2> rotation_nodes{{{3, 12}, {9, 13}}};
@@ -153,7 +158,7 @@ struct spherical_joint {
   };
   parameters p;
 
-  explicit spherical_joint(parameters q) : p(q) {}
+  explicit spherical_joint_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() {
     return {{0.1, -0.2, 0.3, 0.2, 0.1, -0.15, 1.2, 0.4, -0.5, -0.1, 0.25, 0.2}, 800.0, 15.0};
@@ -185,6 +190,10 @@ struct spherical_joint {
   bool admissible(const local_input<spherical_joint>& in) const { return detail::two_quaternions_admissible(in); }
 };
 
+template <class = void>
+struct revolute_joint_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using revolute_joint = revolute_joint_t<>;
 /// REV3: revolute (hinge) joint between body a and body b, as a stiff penalty coupling.
 /// The translational part is SPH3's (detail::point_coupling): F = k d + c d' on the gap
 /// d = p_B - p_A of the joint points, -F on A's x, y, z and -rho_A x F on A's q1..q3, +F
@@ -209,7 +218,8 @@ struct spherical_joint {
 ///     dM/dq_a' = -cr P Theta_a,   dM/dq_b' = cr P Theta_b
 ///
 /// The joint holds to O(load / stiffness): a gap |F| / k, a misalignment |M_perp| / kr.
-struct revolute_joint {
+template <class>
+struct revolute_joint_t {
   static constexpr pradis::passport passport{.name = "REV3", .ext = 12, .ent = 2, .par = 22, .wrk = 8, .adr = 1, .ign = 3};
   /// A's q1..q3 at local 3..5 with hidden q4 at 12; B's at 9..11 with q4 at 13.
   static constexpr std::array<rotation_slot, 2> rotation_nodes{{{3, 12}, {9, 13}}};
@@ -253,7 +263,7 @@ struct revolute_joint {
   spatial::vec3 ea;  ///< unit hinge axis in body a's frame
   spatial::vec3 eb;  ///< unit hinge axis in body b's frame
 
-  explicit revolute_joint(parameters q)
+  explicit revolute_joint_t(parameters q)
       : p(q), ea(detail::unit_axis(spatial::vec3(q.eax, q.eay, q.eaz))), eb(detail::unit_axis(spatial::vec3(q.ebx, q.eby, q.ebz))) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() {

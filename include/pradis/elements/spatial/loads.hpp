@@ -55,9 +55,14 @@ inline constexpr std::string_view spatial_load_parameter_help =
     "8 - phase [deg]";
 }  // namespace detail
 
+template <class = void>
+struct spatial_force_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using spatial_force = spatial_force_t<>;
 /// F3: force P(t) = P0 + A sin(2 pi f t + phase) in global axes on a point's
 /// translations x, y, z. Flows -P(t).
-struct spatial_force {
+template <class>
+struct spatial_force_t {
   static constexpr pradis::passport passport{.name = "F3", .ext = 3, .par = 8, .wrk = 3, .adr = 1, .ign = 23};
   static constexpr element_help help{
       .title = "force in global axes on a point in spatial motion",
@@ -69,7 +74,7 @@ struct spatial_force {
       .special = "code 100 if f < 0 or a parameter is not finite; recommends a step of at most 1/(20 f)"};
   using parameters = spatial_load_parameters;
   parameters p;
-  explicit spatial_force(parameters q) : p(q) {}
+  explicit spatial_force_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {1.0, -2.0, 0.5, 0.3, 0.2, -0.1, 2.0, 30.0}; }
   static spatial_force from_parameters(std::span<const double> v) { return spatial_force(parameters::from(v)); }
@@ -83,9 +88,14 @@ struct spatial_force {
   }
 };
 
+template <class = void>
+struct spatial_torque_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using spatial_torque = spatial_torque_t<>;
 /// M3: torque n(t) = P0 + A sin(2 pi f t + phase) in global axes on the q1, q2, q3 of
 /// a spatial rotational node (their flows are moments about X, Y, Z). Flows -n(t).
-struct spatial_torque {
+template <class>
+struct spatial_torque_t {
   static constexpr pradis::passport passport{.name = "M3", .ext = 3, .par = 8, .wrk = 3, .adr = 1, .ign = 23};
   static constexpr element_help help{
       .title = "torque in global axes on a spatial rotational node",
@@ -99,7 +109,7 @@ struct spatial_torque {
       .special = "code 100 if f < 0 or a parameter is not finite; recommends a step of at most 1/(20 f)"};
   using parameters = spatial_load_parameters;
   parameters p;
-  explicit spatial_torque(parameters q) : p(q) {}
+  explicit spatial_torque_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {0.5, 0.2, -0.3, 0.1, 0.0, 0.2, 1.0, 0.0}; }
   static spatial_torque from_parameters(std::span<const double> v) { return spatial_torque(parameters::from(v)); }
@@ -113,10 +123,15 @@ struct spatial_torque {
   }
 };
 
+template <class = void>
+struct body_force_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using body_force = body_force_t<>;
 /// F3B: force P(t) = P0 + A sin(2 pi f t + phase) fixed to a body (components in the
 /// axes of the rotational node q), applied at the point x, y, z. Flows -R(q) P(t) on
 /// x, y, z, none on q; dF/dq = [rho x] (2/s) E(q), rho = R(q) P(t).
-struct body_force {
+template <class>
+struct body_force_t {
   static constexpr pradis::passport passport{.name = "F3B", .ext = 6, .ent = 1, .par = 8, .wrk = 3, .adr = 1, .ign = 23};
   /// q1..q3 are local DOFs 4..6, the hidden q4 the internal DOF 7.
   static constexpr std::array<rotation_slot, 1> rotation_nodes{{{3, 6}}};
@@ -136,7 +151,7 @@ struct body_force {
                  "recommends a step of at most 1/(20 f)"};
   using parameters = spatial_load_parameters;
   parameters p;
-  explicit body_force(parameters q) : p(q) {}
+  explicit body_force_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {1.0, -2.0, 0.5, 0.3, 0.2, -0.1, 2.0, 30.0}; }
   static body_force from_parameters(std::span<const double> v) { return body_force(parameters::from(v)); }
@@ -159,10 +174,15 @@ struct body_force {
   bool admissible(const local_input<body_force>& in) const { return in.u.segment<4>(3).norm() > 0.2; }
 };
 
+template <class = void>
+struct body_torque_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using body_torque = body_torque_t<>;
 /// M3B: torque n(t) = P0 + A sin(2 pi f t + phase) fixed to a body (components in the
 /// axes of its rotational node). Flows -R(q) n(t) on q1, q2, q3, none on q4;
 /// dF/dq = [R n x] (2/s) E(q).
-struct body_torque {
+template <class>
+struct body_torque_t {
   static constexpr pradis::passport passport{.name = "M3B", .ext = 3, .ent = 1, .par = 8, .wrk = 3, .adr = 1, .ign = 23};
   /// q1..q3 are local DOFs 1..3, the hidden q4 the internal DOF 4.
   static constexpr std::array<rotation_slot, 1> rotation_nodes{{{0, 3}}};
@@ -179,7 +199,7 @@ struct body_torque {
                  "recommends a step of at most 1/(20 f)"};
   using parameters = spatial_load_parameters;
   parameters p;
-  explicit body_torque(parameters q) : p(q) {}
+  explicit body_torque_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {0.5, 0.2, -0.3, 0.1, 0.0, 0.2, 1.0, 0.0}; }
   static body_torque from_parameters(std::span<const double> v) { return body_torque(parameters::from(v)); }

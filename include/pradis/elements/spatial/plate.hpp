@@ -15,6 +15,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct triangle_plate_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using triangle_plate = triangle_plate_t<>;
 /// TRIPL: elastic triangle plate in space with mass. DOFs: the displacements
 /// (x, y, z) of the vertices 1, 2, 3, then r12, r23, r31: the rotation at the middle of
 /// each side about that side, times the side's sign s (+1 or -1): r = s * (rotation
@@ -30,7 +34,8 @@ namespace pradis::elements {
 /// triangle; M = (rho h A / 3) I on the vertex translations (lumped, no rotary inertia);
 /// l the consistent load of a unit pressure along the initial normal n = (P2 - P1) x
 /// (P3 - P1) / |...|. Geometrically linear: K and M are constant (ADR 1, IGN 2).
-struct triangle_plate {
+template <class>
+struct triangle_plate_t {
   static constexpr pradis::passport passport{.name = "TRIPL", .ext = 12, .par = 17, .wrk = 6, .adr = 1, .ign = 2};
   static constexpr element_help help{
       .title = "elastic triangle plate in space (membrane CST + Morley bending), 12 DOFs",
@@ -90,7 +95,7 @@ struct triangle_plate {
   };
   parameters p;
 
-  explicit triangle_plate(parameters q) : p(q) {}
+  explicit triangle_plate_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() {
     return {1e3, 0.3, 0.2, 500, 0.1, -0.2, 0.05, 1.1, 0.1, -0.1, 0.3, 0.9, 0.2, 1, -1, 1, 3.0};

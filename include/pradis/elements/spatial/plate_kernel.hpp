@@ -61,7 +61,8 @@ struct plate_geometry {
 /// rule about t), which equals the slope dw/dm at the side's middle along m = n x t.
 /// The six interpolation conditions (three vertex values, three mid-side slopes) form a
 /// 6 x 6 system A c = dofs; the Hessian rows of A^-1 are returned.
-inline plate_mat36 morley_hessian(const plate_geometry& g) {
+template <class = void>  // compiled only in units that call it
+plate_mat36 morley_hessian(const plate_geometry& g) {
   Eigen::Matrix<double, 6, 6> a;
   for (int i = 0; i < 3; ++i) {
     const double xi = g.x[static_cast<std::size_t>(i)], yi = g.y[static_cast<std::size_t>(i)];
@@ -91,7 +92,8 @@ struct plate_matrices {
 /// Builds the matrices of a triangle with geometry g, Young's modulus e, Poisson's ratio
 /// nu, thickness h and side signs s (the side DOF k is s_k times the rotation about
 /// side k's tangent).
-inline void plate_build(const plate_geometry& g, double e, double nu, double h, const std::array<double, 3>& s,
+template <class = void>  // compiled only in units that call it
+void plate_build(const plate_geometry& g, double e, double nu, double h, const std::array<double, 3>& s,
                         plate_matrices& out) {
   // Local DOFs -> global: u_i = e1 . d_i, v_i = e2 . d_i, w_i = n . d_i; r_k = s_k theta_k.
   Eigen::Matrix<double, 3, 12> tu = Eigen::Matrix<double, 3, 12>::Zero(), tv = tu, tw = tu;

@@ -15,6 +15,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct rigid_body_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using rigid_body = rigid_body_t<>;
 /// BODY3: a rigid body of mass m and inertia tensor J (about the centre of mass, in
 /// the body frame) whose reference point P has the displacements x, y, z and whose
 /// orientation is the rotational node q = (q1, q2, q3, q4); the centre of mass lies
@@ -29,7 +33,8 @@ namespace pradis::elements {
 /// rate of the angular momentum about P: on q1..q3 the moment equations, with the
 /// node's norm equation, make a regular Newton matrix (E(q) q = 0 and the norm row
 /// is q^T). Full Jacobian (ADR=1, IGN=0), derived in docs/rotations.md.
-struct rigid_body {
+template <class>
+struct rigid_body_t {
   static constexpr pradis::passport passport{.name = "BODY3", .ext = 6, .ent = 1, .par = 10, .wrk = 7, .adr = 1, .ign = 0};
   /// q1..q3 are local DOFs 4..6 (0-based 3..5), the hidden q4 the internal DOF 7 (0-based 6).
   static constexpr std::array<rotation_slot, 1> rotation_nodes{{{3, 6}}};
@@ -74,7 +79,7 @@ struct rigid_body {
   };
   parameters p;
 
-  explicit rigid_body(parameters q) : p(q) {}
+  explicit rigid_body_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test): an
   /// asymmetric body with products of inertia and an offset centre of mass.
   static parameters example() { return {2.0, 0.5, 0.4, 0.3, 0.05, -0.03, 0.02, 0.1, -0.2, 0.15}; }

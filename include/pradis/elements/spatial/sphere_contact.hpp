@@ -20,6 +20,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct sphere_plane_contact_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using sphere_plane_contact = sphere_plane_contact_t<>;
 /// CSPHPL: a sphere of radius R whose centre is attached to a body (offset a in the body
 /// frame from the reference point, initially at X0) against a fixed plane through P with
 /// unit normal n (the sphere's side). With the centre c = X0 + x + R(q) a:
@@ -35,7 +39,8 @@ namespace pradis::elements {
 /// stick force -kt z_tr or the sliding force -mu N z_tr / |z_tr|. The force
 /// F = N n + F_t acts at the contact point c - R n; flows: -F on x, y, z and
 /// -(rho_c x F) on q1..q3 (rho_c = R(q) a - R n), none on q4. K and C (IGN=3).
-struct sphere_plane_contact {
+template <class>
+struct sphere_plane_contact_t {
   static constexpr pradis::passport passport{.name = "CSPHPL", .ext = 6, .ent = 1, .par = 19, .str = 10, .wrk = 4, .adr = 1, .ign = 3};
   /// q1..q3 are local DOFs 4..6 (0-based 3..5) with the hidden q4 at 6.
   static constexpr std::array<rotation_slot, 1> rotation_nodes{{{3, 6}}};
@@ -96,7 +101,7 @@ struct sphere_plane_contact {
   };
   parameters p;
 
-  explicit sphere_plane_contact(parameters q) : p(q) {}
+  explicit sphere_plane_contact_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test): a ball of
   /// radius 2 whose centre sits 0.3 off the reference point, a tilted plane through the
   /// origin; the states of the check penetrate by up to ~1.
@@ -213,6 +218,10 @@ struct sphere_plane_contact {
   spatial::vec3 normal() const { return {p.nx, p.ny, p.nz}; }
 };
 
+template <class = void>
+struct sphere_sphere_contact_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using sphere_sphere_contact = sphere_sphere_contact_t<>;
 /// CSPHSP: two spheres of radii R1 and R2 whose centres are attached to two bodies
 /// (offsets a1, a2 in the body frames from reference points initially at X1, X2;
 /// either body may be the ground). With the centres c1, c2, L = |c2 - c1|, e = (c2 - c1) / L:
@@ -227,7 +236,8 @@ struct sphere_plane_contact {
 /// m = c1 + (R1 - delta/2) e and the elastic slip z; the trial slip is
 /// z_tr = P (z + p_b2 - p_b1), P = I - e e^T, and the tangential force acts at m
 /// (detail::sphere_pair_friction). K and C (IGN=3).
-struct sphere_sphere_contact {
+template <class>
+struct sphere_sphere_contact_t {
   static constexpr pradis::passport passport{.name = "CSPHSP", .ext = 12, .ent = 2, .par = 20, .str = 10, .wrk = 4, .adr = 1, .ign = 3};
   /// Body 1's q1..q3 are local DOFs 4..6 (0-based 3..5) with hidden q4 at 12; body 2's 10..12 (9..11) with q4 at 13.
   static constexpr std::array<rotation_slot, 2> rotation_nodes{{{3, 12}, {9, 13}}};
@@ -291,7 +301,7 @@ struct sphere_sphere_contact {
   };
   parameters p;
 
-  explicit sphere_sphere_contact(parameters q) : p(q) {}
+  explicit sphere_sphere_contact_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() {
     return {0.1, -0.2, 0.3, 0.2, 0.1, -0.15, 1.5, 1.2, 0.4, 2.3, -0.1, 0.25, 0.2, 1.5, 2, 4e3, 0.05, 1.0, 0.4, 1e4};

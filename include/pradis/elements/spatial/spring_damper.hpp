@@ -16,6 +16,10 @@
 
 namespace pradis::elements {
 
+template <class = void>
+struct spatial_spring_damper_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using spatial_spring_damper = spatial_spring_damper_t<>;
 /// SD3: linear spring-damper between a point A of body a and a point B of body b in
 /// spatial motion, acting along the line AB. Each end is a translational point
 /// (x, y, z: the displacements of the body's reference point, initially at X0) and a
@@ -30,7 +34,8 @@ namespace pradis::elements {
 ///
 /// dF/dd = e (k e + c (d' - e L') / L)^T + (T / L)(I - e e^T), dF/dd' = c e e^T; the
 /// chain through the attached points is in detail::two_point_flows. K and C (IGN=3).
-struct spatial_spring_damper {
+template <class>
+struct spatial_spring_damper_t {
   static constexpr pradis::passport passport{.name = "SD3", .ext = 12, .ent = 2, .par = 15, .wrk = 3, .adr = 1, .ign = 3};
   /// A's q1..q3 are local DOFs 4..6 (0-based 3..5) with hidden q4 at 12; B's 10..12 (9..11) with q4 at 13.
   static constexpr std::array<rotation_slot, 2> rotation_nodes{{{3, 12}, {9, 13}}};
@@ -83,7 +88,7 @@ struct spatial_spring_damper {
   /// Lengths below min_length * max(1, L0) are "close to zero" (code 75).
   static constexpr double min_length = 1e-9;
 
-  explicit spatial_spring_damper(parameters q) : p(q) {}
+  explicit spatial_spring_damper_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {0.1, -0.2, 0.3, 0.2, 0.1, -0.15, 1.2, 0.4, -0.5, -0.1, 0.25, 0.2, 800.0, 0.7, 15.0}; }
   static spatial_spring_damper from_parameters(std::span<const double> v) {
@@ -171,6 +176,10 @@ struct relative_rotation_vector {
 };
 }  // namespace detail
 
+template <class = void>
+struct rotational_spring_damper_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using rotational_spring_damper = rotational_spring_damper_t<>;
 /// RSD3: linear rotational spring-damper between two spatial rotational nodes a and b
 /// (either may be the fully fixed node: q1..q3 all on the ground). With theta the
 /// rotation vector of the relative rotation conj(q_a) q_b (rule of finite rotations),
@@ -184,7 +193,8 @@ struct relative_rotation_vector {
 /// Jinv the inverse left Jacobian of SO(3)), d omega/dq' = Theta,
 /// d omega/dq = -(2/s) (E(q') + omega q^T). The potential is k phi^2 / 2: the moment
 /// jumps from k pi e to -k pi e where the relative angle passes 180 degrees.
-struct rotational_spring_damper {
+template <class>
+struct rotational_spring_damper_t {
   static constexpr pradis::passport passport{.name = "RSD3", .ext = 6, .ent = 2, .par = 2, .wrk = 4, .adr = 1, .ign = 3};
   /// a's q1..q3 are local DOFs 1..3 (0-based 0..2) with hidden q4 at 6; b's 4..6 (3..5) with q4 at 7.
   static constexpr std::array<rotation_slot, 2> rotation_nodes{{{0, 6}, {3, 7}}};
@@ -215,7 +225,7 @@ struct rotational_spring_damper {
   };
   parameters p;
 
-  explicit rotational_spring_damper(parameters q) : p(q) {}
+  explicit rotational_spring_damper_t(parameters q) : p(q) {}
   /// Example parameters (used by `pradis check` and the all-elements test).
   static parameters example() { return {50.0, 2.5}; }
   static rotational_spring_damper from_parameters(std::span<const double> v) {
