@@ -8,7 +8,7 @@ preset="${1:-dev}"
 if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
   apt-get update
   DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
-    ca-certificates cmake g++ make libeigen3-dev doctest-dev libbenchmark-dev gnuplot-nox \
+    ca-certificates cmake g++ clang make libeigen3-dev doctest-dev libbenchmark-dev gnuplot-nox \
     libsuitesparse-dev libsundials-dev libboost-dev libsimbody-dev
 fi
 cmake --preset "$preset"

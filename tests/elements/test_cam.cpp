@@ -110,7 +110,7 @@ TEST_SUITE("elements/CAM") {
   }
 
   TEST_CASE("the CAM Jacobian is exact at random states in and out of contact") {
-    testing::jacobian_checker<cam> chk(cam(cam::example()));
+    testing::jacobian_checker<cam> chk{cam(cam::example())};
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> uni(-1.0, 1.0);
     int in_contact = 0, checked = 0;

@@ -227,7 +227,7 @@ TEST_SUITE("elements/condensed") {
       CHECK((fout.f.head<6>() - out.f).cwiseAbs().maxCoeff() <= 1e-12 * scale);
       CHECK(c.work[static_cast<std::size_t>(star::work_at)] <= 6.0);  // Newton converges in a few steps
     }
-    testing::jacobian_checker<star> chk(star(star::example()));
+    testing::jacobian_checker<star> chk{star(star::example())};
     for (int trial = 0; trial < 5; ++trial)
       if (!jacobian_passes(chk.check(random_state<star>(gen)))) break;
   }

@@ -323,7 +323,8 @@ TEST_SUITE("linalg") {
     // Thresholds re-measured with `pradis_bench_sparse --thresholds` (docs/sparse.md).
     const std::vector<std::pair<int, int>> expect{{0, 0},  {1, 0},   {2, 0},   {3, 1},   {9, 1},     {10, 3},
                                                   {49, 3}, {50, 3},  {199, 3}, {499, 3}, {500, 4}, {100000, 4}};
-    for (const auto& [n, level] : expect) {
+    for (const auto& e : expect) {
+      const int n = e.first, level = e.second;  // not a structured binding: CAPTURE's lambda takes them
       CAPTURE(n);
       CHECK(automatic_level(n) == level);
       CHECK(optim_ordering{}.effective_level(n) == level);

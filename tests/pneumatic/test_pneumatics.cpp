@@ -169,8 +169,9 @@ TEST_SUITE("pneumatic/PNORF") {
     testing::jacobian_checker<pneumatic_orifice> chk(pneumatic_orifice({2e-8, 0.3, 300.0, 0.999}), 4,
                                                      {.rel_step = 0, .abs_step = 0.05, .tolerance = 1e-6,
                                                       .zero_floor = 1e-16});
-    for (const auto& [g1, g2] : std::array<std::pair<double, double>, 5>{
+    for (const auto& gauges : std::array<std::pair<double, double>, 5>{
              {{6e5, 0.0}, {3e4, 1e4}, {1e4 + 20, 1e4}, {1e4, 1e4 + 37}, {0.0, 5e5}}}) {
+      const double g1 = gauges.first, g2 = gauges.second;  // not a structured binding: CAPTURE's lambda takes them
       CAPTURE(g1);
       CAPTURE(g2);
       local_input<pneumatic_orifice> in;

@@ -143,7 +143,7 @@ struct tilted_patch {
 
 TEST_SUITE("spatial/plate") {
   TEST_CASE("TRIPL: the Jacobian of a tilted triangle with mixed side signs matches finite differences") {
-    testing::jacobian_checker<triangle_plate> chk(triangle_plate(triangle_plate::example()));
+    testing::jacobian_checker<triangle_plate> chk{triangle_plate(triangle_plate::example())};
     local_input<triangle_plate> at;
     for (int i = 0; i < 12; ++i) {
       at.u(i) = 0.01 * std::sin(1.0 + i);

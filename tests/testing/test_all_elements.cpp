@@ -29,7 +29,7 @@ void check_one_element() {
   if (!E::help.work.empty()) CHECK(help_lines(E::help.work) == p.wrk);
   CHECK(!E::help.special.empty());
 
-  testing::jacobian_checker<E> chk(E(E::example()));
+  testing::jacobian_checker<E> chk{E(E::example())};
   std::mt19937 rng(12345);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
   int checked = 0;

@@ -94,16 +94,16 @@ struct composite {
 
  private:
   struct params_f {
-    constexpr std::string operator()() const { return composite_detail::parameter_text<Spec, Ps...>(); }
+    constexpr composite_detail::text operator()() const { return composite_detail::parameter_text<Spec, Ps...>(); }
   };
   struct dofs_f {
-    constexpr std::string operator()() const { return composite_detail::dof_text<Spec, Ps...>(Spec::ext); }
+    constexpr composite_detail::text operator()() const { return composite_detail::dof_text<Spec, Ps...>(Spec::ext); }
   };
   struct work_f {
-    constexpr std::string operator()() const { return composite_detail::work_text<Spec, Ps...>(); }
+    constexpr composite_detail::text operator()() const { return composite_detail::work_text<Spec, Ps...>(); }
   };
   struct name_f {
-    constexpr std::string operator()() const { return composite_detail::name_text<Ps...>(); }
+    constexpr composite_detail::text operator()() const { return composite_detail::name_text<Ps...>(); }
   };
   static constexpr std::string_view field_() {
     if constexpr (requires { Spec::field; })

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <string_view>
 
 #include <Eigen/Core>
@@ -195,18 +196,73 @@ constexpr domain_table domain_table_of() {
 
 // ---- help text --------------------------------------------------------------
 
-constexpr std::string number(int k) {
-  std::string s;
+/// A text built in a constant expression (help texts of composites). Not
+/// std::string: clang 14 with libstdc++ 12 cannot evaluate std::string's
+/// small-buffer union at compile time; and not std::vector<char>, which GCC
+/// evaluates too slowly for the long parameter lists of a crank throw.
+class text {
+ public:
+  constexpr text() = default;
+  constexpr text(std::string_view s) { append(s.data(), s.size()); }
+  constexpr text(const char* s) : text(std::string_view(s)) {}
+  constexpr text(const text& o) { append(o.d_, o.n_); }
+  constexpr text(text&& o) noexcept : d_(o.d_), n_(o.n_), cap_(o.cap_) { o.d_ = nullptr, o.n_ = o.cap_ = 0; }
+  constexpr text& operator=(text o) noexcept {
+    std::swap(d_, o.d_), std::swap(n_, o.n_), std::swap(cap_, o.cap_);
+    return *this;
+  }
+  constexpr ~text() { delete[] d_; }
+  constexpr text& operator+=(const text& o) {
+    append(o.d_, o.n_);
+    return *this;
+  }
+  friend constexpr text operator+(text a, const text& b) { return std::move(a += b); }
+  friend constexpr text operator+(const char* a, const text& b) { return std::move(text(a) += b); }
+  constexpr bool empty() const { return n_ == 0; }
+  constexpr std::size_t size() const { return n_; }
+  constexpr char& back() { return d_[n_ - 1]; }
+  constexpr void pop_back() { --n_; }
+  constexpr void push_front(char x) {
+    reserve(n_ + 1);
+    for (std::size_t i = n_; i > 0; --i) d_[i] = d_[i - 1];
+    d_[0] = x, ++n_;
+  }
+  constexpr text substr(std::size_t from) const { return text(std::string_view(d_ + from, n_ - from)); }
+  constexpr const char* begin() const { return d_; }
+  constexpr const char* end() const { return d_ + n_; }
+  /// The text as a run-time string (messages).
+  std::string str() const { return std::string(begin(), end()); }
+
+ private:
+  constexpr void reserve(std::size_t n) {
+    if (n <= cap_) return;
+    const std::size_t cap = n > 2 * cap_ ? n : 2 * cap_;
+    char* d = new char[cap];
+    for (std::size_t i = 0; i < n_; ++i) d[i] = d_[i];
+    delete[] d_;
+    d_ = d, cap_ = cap;
+  }
+  constexpr void append(const char* s, std::size_t n) {
+    reserve(n_ + n);
+    for (std::size_t i = 0; i < n; ++i) d_[n_ + i] = s[i];
+    n_ += n;
+  }
+  char* d_ = nullptr;
+  std::size_t n_ = 0, cap_ = 0;
+};
+
+constexpr text number(int k) {
+  text s;
   if (k == 0) return "0";
   while (k > 0) {
-    s.insert(s.begin(), static_cast<char>('0' + k % 10));
+    s.push_front(static_cast<char>('0' + k % 10));
     k /= 10;
   }
   return s;
 }
 
 /// Line j (0-based) of a '\n'-separated help list without its "N - " prefix, or "".
-constexpr std::string line_of(std::string_view list, int j) {
+constexpr text line_of(std::string_view list, int j) {
   int at = 0;
   std::size_t b = 0;
   while (at < j) {
@@ -222,26 +278,26 @@ constexpr std::string line_of(std::string_view list, int j) {
   std::size_t d = 0;
   while (d < l.size() && l[d] >= '0' && l[d] <= '9') ++d;
   if (d > 0 && l.substr(d).starts_with(" - ")) l = l.substr(d + 3);
-  return std::string(l);
+  return text(l);
 }
 
 /// "part i 'NAME' (label)".
 template <class Spec, class P>
-constexpr std::string part_name(int i) {
-  std::string s = "part " + number(i + 1) + " '" + std::string(P::element::passport.name) + "'";
-  if constexpr (requires { Spec::labels; }) s += " (" + std::string(Spec::labels[static_cast<std::size_t>(i)]) + ")";
+constexpr text part_name(int i) {
+  text s = "part " + number(i + 1) + " '" + text(P::element::passport.name) + "'";
+  if constexpr (requires { Spec::labels; }) s += " (" + text(Spec::labels[static_cast<std::size_t>(i)]) + ")";
   return s;
 }
 
 /// The parameter list: one line per PAR entry, naming its part.
 template <class Spec, class... Ps>
-constexpr std::string parameter_text() {
-  std::string s;
+constexpr text parameter_text() {
+  text s;
   int k = 0, i = 0;
   (
       [&] {
         for (int j = 0; j < Ps::element::passport.par; ++j) {
-          std::string l = line_of(Ps::element::help.parameters, j);
+          text l = line_of(Ps::element::help.parameters, j);
           if (l.empty()) l = "parameter " + number(j + 1);
           s += number(++k) + " - " + part_name<Spec, Ps>(i) + ", its parameter " + number(j + 1) + ": " + l + "\n";
         }
@@ -254,10 +310,10 @@ constexpr std::string parameter_text() {
 
 /// The external DOF list: each composite DOF described by the first part that uses it.
 template <class Spec, class... Ps>
-constexpr std::string dof_text(int ext) {
-  std::string s;
+constexpr text dof_text(int ext) {
+  text s;
   for (int k = 0; k < ext; ++k) {
-    std::string l;
+    text l;
     int i = 0;
     (
         [&] {
@@ -279,13 +335,13 @@ constexpr std::string dof_text(int ext) {
 
 /// The work list: the parts' entries, then the statistics.
 template <class Spec, class... Ps>
-constexpr std::string work_text() {
-  std::string s;
+constexpr text work_text() {
+  text s;
   int k = 0, i = 0;
   (
       [&] {
         for (int j = 0; j < Ps::element::passport.wrk; ++j) {
-          std::string l = line_of(Ps::element::help.work, j);
+          text l = line_of(Ps::element::help.work, j);
           if (l.empty()) l = "work entry " + number(j + 1);
           s += number(++k) + " - " + part_name<Spec, Ps>(i) + ": " + l + "\n";
         }
@@ -301,9 +357,9 @@ constexpr std::string work_text() {
 
 /// The name line: "Super-element of N parts: BEAM3, BEAMI3, ...".
 template <class... Ps>
-constexpr std::string name_text() {
-  std::string s = "Super-element of " + number(static_cast<int>(sizeof...(Ps))) + " parts:";
-  ((s += " " + std::string(Ps::element::passport.name) + ","), ...);
+constexpr text name_text() {
+  text s = "Super-element of " + number(static_cast<int>(sizeof...(Ps))) + " parts:";
+  ((s += " " + text(Ps::element::passport.name) + ","), ...);
   s.back() = '.';
   return s;
 }
@@ -315,7 +371,7 @@ struct text_storage {
   static constexpr std::size_t size = F{}().size();
   static constexpr std::array<char, size + 1> chars = [] {
     std::array<char, size + 1> a{};
-    const std::string s = F{}();
+    const text s = F{}();
     std::copy(s.begin(), s.end(), a.begin());
     return a;
   }();

@@ -132,7 +132,7 @@ struct condensed {
 
  private:
   struct name_f {
-    constexpr std::string operator()() const {
+    constexpr composite_detail::text operator()() const {
       // Built from the parts' texts again, not from full_type::help: reading a text_storage array in a constant
       // expression is refused by GCC under -fsanitize=address,undefined (its null-pointer check).
       return "Condensed s" + composite_detail::name_text<Ps...>().substr(1) +
@@ -140,7 +140,7 @@ struct condensed {
     }
   };
   struct work_f {
-    constexpr std::string operator()() const {
+    constexpr composite_detail::text operator()() const {
       const int k = full_type::passport.wrk;
       return composite_detail::work_text<Spec, Ps...>() + "\n" + composite_detail::number(k + 1) +
              " - Newton iterations on the condensed DOFs in the last call [-]\n" + composite_detail::number(k + 2) +
@@ -315,7 +315,7 @@ struct condensed {
     (
         [&] {
           for (int k : Ps::map)
-            if (k == m && s.empty()) s = composite_detail::part_name<Spec, Ps>(i);
+            if (k == m && s.empty()) s = composite_detail::part_name<Spec, Ps>(i).str();
           ++i;
         }(),
         ...);

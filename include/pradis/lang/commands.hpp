@@ -140,7 +140,7 @@ struct check_options {
 template <class E>
 bool check_element_jacobian(std::ostream& os, const check_options& o) {
   constexpr passport p = E::passport;
-  testing::jacobian_checker<E> chk(E(E::example()));
+  testing::jacobian_checker<E> chk{E(E::example())};
   std::mt19937 rng(o.seed);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
   os << "Finite-difference check of the Jacobian of " << p.name << " (" << E::help.title
