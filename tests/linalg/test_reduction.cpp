@@ -176,6 +176,11 @@ TEST_SUITE("linalg/reduction") {
     CHECK(bad("%%MatrixMarket matrix coordinate complex general\n").find("f.mtx:1:34: field 'complex'") !=
           std::string::npos);
     CHECK(bad(h + "2 2\n").find("f.mtx:2:1: the size line must be") != std::string::npos);
+    // More rows than the default limit (dense 10000 x 10000, 800 MB) is refused before any allocation.
+    CHECK(bad(h + "100000 100000 1\n1 1 1\n").find("f.mtx:2:1: the row count '100000' is not a whole number in 1..10000") !=
+          std::string::npos);
+    CHECK(message_of([&] { (void)io::parse_matrix_market(h + "3 3 1\n1 1 1\n", "f.mtx", 2); })
+              .find("the row count '3' is not a whole number in 1..2") != std::string::npos);
     CHECK(bad(h + "2 3 1\n1 1 1\n").find("must be square") != std::string::npos);
     CHECK(bad(h + "2 2 2\n1 1 4\n").find("ends after 1 of its 2 entries") != std::string::npos);
     CHECK(bad(h + "2 2 1\n1 2 4\n").find("f.mtx:3:1: entry (1, 2) is above the diagonal") != std::string::npos);

@@ -57,9 +57,9 @@ inline std::string mm_lower(std::string_view s) {
 /// Parses the Matrix Market text `text` (named `file` in messages) into a dense
 /// matrix; a symmetric file gives the full symmetric matrix. Throws
 /// table_csv_error (code io_error) at the first defect (see the file comment),
-/// also for more than `max_size` rows or columns (dense storage: the default
-/// 1e5 is already 80 GB).
-inline Eigen::MatrixXd parse_matrix_market(std::string_view text, const std::string& file, long max_size = 100000) {
+/// also for more than `max_size` rows or columns, before anything is allocated
+/// (dense storage: the default, 10000 x 10000, is 800 MB).
+inline Eigen::MatrixXd parse_matrix_market(std::string_view text, const std::string& file, long max_size = 10000) {
   std::vector<std::string_view> lines;
   for (std::size_t b = 0; b <= text.size();) {
     std::size_t e = text.find('\n', b);
@@ -152,14 +152,14 @@ inline Eigen::MatrixXd parse_matrix_market(std::string_view text, const std::str
   return a;
 }
 
-/// Reads a Matrix Market file (see parse_matrix_market). A file that cannot be
-/// read is a table_csv_error at line 0 naming the path.
-inline Eigen::MatrixXd read_matrix_market(const std::string& path) {
+/// Reads a Matrix Market file (see parse_matrix_market, also for `max_size`). A
+/// file that cannot be read is a table_csv_error at line 0 naming the path.
+inline Eigen::MatrixXd read_matrix_market(const std::string& path, long max_size = 10000) {
   std::ifstream f(path, std::ios::binary);
   if (!f) throw table_csv_error(path, 0, 0, "cannot read the matrix file");
   std::ostringstream s;
   s << f.rdbuf();
-  return parse_matrix_market(s.str(), path);
+  return parse_matrix_market(s.str(), path, max_size);
 }
 
 /// Writes `a` as a Matrix Market coordinate file (real; `symmetric`: the lower
