@@ -126,7 +126,7 @@ reduced_part craig_bampton(const Eigen::MatrixXd& k, const Eigen::MatrixXd& m, c
   for (Eigen::Index i = 0; i < ni; ++i) {
     const int row = in[static_cast<std::size_t>(i)];
     r.t.row(row).head(nb) = psi.row(i);
-    r.t.row(row).tail(modes) = phi.row(i);
+    if (modes > 0) r.t.row(row).tail(modes) = phi.row(i);  // phi.row(i) of an ni x 0 matrix offsets a null pointer
   }
   r.k = r.t.transpose() * k * r.t;
   r.m = r.t.transpose() * m * r.t;
