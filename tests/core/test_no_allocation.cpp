@@ -361,6 +361,7 @@ TEST_SUITE("core/allocation") {
   TEST_CASE("condensed super-elements do not allocate in evaluate (their Newton iterations are fixed-size)") {
     check_element_does_not_allocate<pradis_condensed_tests::star>();
     check_element_does_not_allocate<pradis_condensed_tests::beam_parts>();
+    check_element_does_not_allocate<pradis_condensed_tests::beam2>();  // an inner rotational node condensed
   }
 
   TEST_CASE("assembler::evaluate over a built planar chain (N = 50) does not allocate") {

@@ -1,6 +1,7 @@
 #pragma once
 // Condensed super-elements shared by tests/elements/test_condensed.cpp and the no-allocation test
-// (tests/core/test_no_allocation.cpp): springs in series, a star of LINKD, a BEAM3 with springs beside it.
+// (tests/core/test_no_allocation.cpp): springs in series, a star of LINKD, a BEAM3 with springs beside it, two BEAM3
+// with the node between them (an inner rotational node) condensed.
 
 #include <array>
 #include <string_view>
@@ -65,5 +66,29 @@ struct beam1_spec {
 };
 using beam_one_spring =
     composite<beam1_spec, part<elastic_beam, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13>, part<linear_spring, 0, 6>>;
+
+
+/// A cantilever of two BEAM3 from the external node A (DOFs 1..6, hidden q4 at 19) through the inner node N (DOFs 13..18,
+/// q4 at 21) to the external node B (7..12, q4 at 20), 1 m along X, section as in tests/spatial/test_beam.cpp: the
+/// condensed type condenses N with its q1..q4 (an inner rotational node).
+struct beam2_spec {
+  static constexpr std::string_view name = "BEAM2C";
+  static constexpr std::string_view title = "two beams in a line, the node between them condensed";
+  static constexpr int ext = 12, ent = 9;
+  static constexpr std::array<std::string_view, 2> labels{"first half", "second half"};
+  static elastic_beam::parameters half(double xa, double xb) {
+    return {1e4, 4e3, 0.03, 1e-4, 2e-4, 1.5e-4, xa, 0, 0, xb, 0, 0, 0, 1, 0};
+  }
+  static std::tuple<elastic_beam::parameters, elastic_beam::parameters> example() {
+    return {half(0, 0.5), half(0.5, 1.0)};
+  }
+};
+struct beam2_kept_spec : beam2_spec {
+  static constexpr std::string_view name = "BEAM2K";
+};
+using beam2_first = part<elastic_beam, 0, 1, 2, 3, 4, 5, 12, 13, 14, 15, 16, 17, 18, 20>;
+using beam2_second = part<elastic_beam, 12, 13, 14, 15, 16, 17, 6, 7, 8, 9, 10, 11, 20, 19>;
+using beam2_kept = composite<beam2_kept_spec, beam2_first, beam2_second>;
+using beam2 = condensed<beam2_spec, beam2_first, beam2_second>;
 
 }  // namespace pradis_condensed_tests

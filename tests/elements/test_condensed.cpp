@@ -17,11 +17,16 @@
 #include <string>
 #include <string_view>
 #include <tuple>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "condensed_parts.hpp"
 #include "element_test_support.hpp"
 #include "pradis/elements/condensed.hpp"
+#include "pradis/integrators/simulation.hpp"
+#include "pradis/spatial/node_state.hpp"
+#include "pradis/spatial/quaternion.hpp"
 #include "pradis/testing/jacobian_check.hpp"
 
 using namespace pradis;
@@ -120,6 +125,21 @@ std::optional<pradis::error> evaluation_error(E e, std::string_view name, const 
     e.evaluate(in, out, c.ctx);
   });
 }
+
+/// A cantilever of one BEAM2C (or its kept composite BEAM2K): A clamped (its q1..q3 on the ground), B free.
+template <class E>
+struct beam2_cantilever {
+  model<E, spatial_force, point_mass, initial_velocity> m;
+  std::vector<dof> x;  ///< B's translations
+  rotation_node rb;    ///< B's rotational node
+  beam2_cantilever() {
+    const rotation_node root = m.add_rotation_node("r0", m.ground(), m.ground(), m.ground());
+    x = m.add_dofs(3, "xb");
+    rb = m.add_rotation_node("rb");
+    const dof g = m.ground();
+    m.template add<E>("beam", E::example(), g, g, g, root, x[0], x[1], x[2], rb);
+  }
+};
 
 }  // namespace
 
@@ -308,6 +328,169 @@ TEST_SUITE("elements/condensed") {
         beam_parts({{bp, linear_spring::parameters{k1}, linear_spring::parameters{k2}}}));
     for (int trial = 0; trial < 3; ++trial)
       if (!jacobian_passes(chk.check(random_state<beam_parts>(gen, {12, 13})))) break;
+  }
+
+  TEST_CASE("an inner rotational node is condensed with its q4: the passport of two BEAM3 with their middle node condensed") {
+    static_assert(check_element<beam2>());
+    static_assert(beam2::passport.ext == 12 && beam2::passport.ent == 2);  // the hidden q4 of A and B stay
+    static_assert(beam2::rotation_nodes == std::array<rotation_slot, 2>{{{3, 12}, {9, 13}}});
+    static_assert(beam2::inner_rotation_nodes == 1 && beam2::condensed_count == 7);  // N: x y z q1 q2 q3 q4
+    static_assert(beam2::condensed_dofs == std::array<int, 7>{12, 13, 14, 15, 16, 17, 20});
+    static_assert(beam2::passport.str == beam2_kept::passport.str + 7);
+    static_assert(beam2_kept::rotation_nodes.size() == 3);  // the kept composite has N as a rotational node
+    CHECK(std::string_view(beam2::help.name).find("Internal DOFs eliminated by static condensation: 7.") !=
+          std::string_view::npos);
+  }
+
+  TEST_CASE(
+      "two BEAM3 with their middle node condensed have the stiffness of one BEAM3 of the whole length, at rest and "
+      "turned rigidly by a large rotation") {
+    // Reference: the static Euler-Bernoulli beam under end loads has a cubic deflection, which the cubic element
+    // represents exactly, so the static condensation of two elements equals one element of the total length (Guyan,
+    // AIAA J. 3 (1965) 380; any FE text on beam elements). BEAM3 is corotational: a rigid rotation of the whole beam
+    // leaves its flows zero and turns its stiffness with it (objectivity), and the condensed middle node must then
+    // sit at the turned midpoint with the turned orientation.
+    beam2 s(beam2::example());
+    const elastic_beam one(beam2_spec::half(0, 1.0));
+    cond_context<beam2> c("two halves");
+    cond_context<elastic_beam> c1("one");
+    s.new_integration(c.ctx);
+    const auto compare = [&](const spatial::quaternion& q, const char* what) {
+      CAPTURE(what);
+      const spatial::mat3 r = spatial::rotation_matrix(q);
+      local_input<beam2> in;
+      const spatial::vec3 b0(1, 0, 0), ub = r * b0 - b0;  // A at the origin stays
+      in.u.segment<3>(3) = q.head<3>();
+      in.u.segment<3>(6) = ub;
+      in.u.segment<3>(9) = q.head<3>();
+      in.u(12) = in.u(13) = q(3);
+      local_input<elastic_beam> i1;
+      i1.u = in.u;
+      local_output<beam2> out;
+      local_output<elastic_beam> o1;
+      s.evaluate(in, out, c.ctx);
+      one.evaluate(i1, o1, c1.ctx);
+      const double ks = o1.K.cwiseAbs().maxCoeff();
+      CHECK(out.f.cwiseAbs().maxCoeff() <= 1e-12 * ks);  // a rigid motion stresses nothing
+      CHECK((out.K - o1.K).cwiseAbs().maxCoeff() <= 1e-9 * ks);
+      // The middle node N (condensed DOFs 0..5 and 6: x y z q1 q2 q3 q4) at the turned midpoint, turned by q.
+      const spatial::vec3 n0(0.5, 0, 0), un = r * n0 - n0;
+      for (int k = 0; k < 3; ++k) CHECK(std::abs(c.new_s[static_cast<std::size_t>(k)] - un(k)) <= 1e-12);
+      const spatial::quaternion qn(c.new_s[3], c.new_s[4], c.new_s[5], c.new_s[6]);
+      CHECK(std::min((qn - q).norm(), (qn + q).norm()) <= 1e-12);
+      c.old_s = c.new_s;  // accept: the next call starts from here
+      c.ctx.old_state = c.old_s;
+    };
+    compare(spatial::identity(), "at rest");
+    // Turned in ten steps up to 170 degrees about an oblique axis, each call starting from the last accepted N.
+    const spatial::vec3 axis = spatial::vec3(1, 2, 2) / 3;
+    for (int k = 1; k <= 10; ++k) compare(spatial::from_axis_angle(axis, k * 0.1 * 170 * 3.14159265358979 / 180), "turned");
+  }
+
+  TEST_CASE(
+      "two condensed BEAM3: the middle node in equilibrium, the flows those of the kept composite there, the "
+      "Jacobian checked by finite differences") {
+    beam2 s(beam2::example());
+    beam2_kept full(beam2_kept::example());
+    cond_context<beam2> c("beam2");
+    cond_context<beam2_kept> ck("kept");
+    s.new_integration(c.ctx);
+    std::mt19937 gen(17);
+    for (int trial = 0; trial < 5; ++trial) {
+      const local_input<beam2> in = random_state<beam2>(gen, {12, 13});
+      local_output<beam2> out;
+      s.evaluate(in, out, c.ctx);
+      local_input<beam2_kept> fin;
+      fin.u.head<12>() = in.u.head<12>();
+      fin.u(18) = in.u(12);
+      fin.u(19) = in.u(13);
+      for (int j = 0; j < 6; ++j) fin.u(12 + j) = c.new_s[static_cast<std::size_t>(j)];
+      fin.u(20) = c.new_s[6];
+      local_output<beam2_kept> fout;
+      full.evaluate(fin, fout, ck.ctx);
+      const double scale = fout.f.cwiseAbs().maxCoeff();
+      CHECK(fout.f.segment<6>(12).cwiseAbs().maxCoeff() <= 1e-12 * scale);  // N is in equilibrium
+      CHECK(std::abs(fin.u.segment<3>(15).squaredNorm() + fin.u(20) * fin.u(20) - 1) <= 1e-12);  // |q_N| = 1
+      CHECK((fout.f.head<12>() - out.f.head<12>()).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+      CHECK(c.work[static_cast<std::size_t>(beam2::work_at)] <= 6.0);  // Newton converges in a few steps
+    }
+    testing::jacobian_checker<beam2> chk{beam2(beam2::example())};
+    for (int trial = 0; trial < 5; ++trial)
+      if (!jacobian_passes(chk.check(random_state<beam2>(gen, {12, 13})))) break;
+  }
+
+  TEST_CASE(
+      "a cantilever of two condensed BEAM3: static tip deflection P L^3 / (3 E I) in both planes, as the kept "
+      "composite") {
+    // Reference: Euler-Bernoulli cantilever under a tip load, deflection P L^3 / (3 E I) and slope P L^2 / (2 E I)
+    // (Timoshenko and Gere, Mechanics of Materials); the cubic elements are exact for it. P = 1e-4 N gives a tip
+    // deflection of 3e-5 L, so the geometric nonlinearity of the corotational beam is ~1e-9 relative.
+    const double p = 1e-4, e = 1e4, iy = 1e-4, iz = 2e-4;
+    const auto run = [&](auto tag) {
+      beam2_cantilever<typename decltype(tag)::type> c;
+      c.m.template add<spatial_force>("load", {0, p, p, 0, 0, 0, 0, 0}, c.x[0], c.x[1], c.x[2]);
+      simulation sim(c.m);
+      sim.run({.end = 1.0, .smax = 0.5,
+               .newton = {.dabsu = 1e-12, .drltu = 0, .dabsi = 1e-11, .drlti = 0, .itr = 8}});
+      const spatial::quaternion q = spatial::node_quaternion(sim, c.rb);
+      MESSAGE("rotational nodes ", c.m.rotation_nodes().size(), ", Newton iterations ",
+              sim.statistics().newton_iterations);
+      return std::array<double, 4>{sim.u(c.x[1]), sim.u(c.x[2]), -2 * q(1) / q(3), 2 * q(2) / q(3)};
+    };
+    const auto a = run(std::type_identity<beam2>{}), b = run(std::type_identity<beam2_kept>{});
+    const double uy = p / (3 * e * iz), uz = p / (3 * e * iy), slope_y = p / (2 * e * iy), slope_z = p / (2 * e * iz);
+    MESSAGE("condensed: tip deflection errors y ", a[0] / uy - 1, ", z ", a[1] / uz - 1);
+    CHECK(std::abs(a[0] / uy - 1) < 1e-6);
+    CHECK(std::abs(a[1] / uz - 1) < 1e-6);
+    CHECK(std::abs(a[2] / slope_y - 1) < 1e-6);  // the slope about -Y from the bending in the X-Z plane
+    CHECK(std::abs(a[3] / slope_z - 1) < 1e-6);
+    for (int k = 0; k < 4; ++k) CHECK(std::abs(a[static_cast<std::size_t>(k)] - b[static_cast<std::size_t>(k)]) <=
+                                      1e-9 * std::abs(b[static_cast<std::size_t>(k)]));
+  }
+
+  TEST_CASE(
+      "a mass on a cantilever of two condensed BEAM3 swings with the period 2 pi sqrt(m L^3 / (3 E I)), as on the kept "
+      "composite") {
+    // Reference: a massless cantilever with a tip mass m (translations only) is a spring of k = 3 E I / L^3 in each
+    // bending plane (Timoshenko and Gere); small amplitude (1e-3 of L), so the period is 2 pi sqrt(m / k). The kept
+    // composite solves the same equations with N among the global DOFs: the two runs agree to round-off.
+    const double e = 1e4, iz = 2e-4, mass = 0.06, k = 3 * e * iz, period = 2 * 3.14159265358979 * std::sqrt(mass / k);
+    const auto run = [&](auto tag) {
+      beam2_cantilever<typename decltype(tag)::type> c;
+      for (int i = 0; i < 3; ++i)
+        c.m.template add<point_mass>("m" + std::to_string(i + 1), {mass}, c.x[static_cast<std::size_t>(i)]);
+      c.m.template add<initial_velocity>("v0", {0.01}, c.x[1]);
+      simulation sim(c.m);
+      std::vector<double> y, t;
+      sim.on_output([&](const auto& st) {
+        y.push_back(st.u(c.x[1]));
+        t.push_back(st.time());
+      });
+      sim.run({.end = 0.7, .smax = 1e-3, .newton = {.dabsu = 1e-12, .drltu = 0, .dabsi = 1e-10, .drlti = 0, .itr = 8}});
+      MESSAGE("Newton iterations ", sim.statistics().newton_iterations, ", steps ", sim.statistics().steps);
+      CHECK(sim.statistics().rejected_steps == 0);
+      // The period from the two downward zero crossings (linear interpolation between outputs).
+      std::vector<double> down;
+      for (std::size_t i = 1; i < y.size(); ++i)
+        if (y[i - 1] > 0 && y[i] <= 0) down.push_back(t[i - 1] + (t[i] - t[i - 1]) * y[i - 1] / (y[i - 1] - y[i]));
+      REQUIRE(down.size() >= 1);
+      return std::pair<std::vector<double>, double>{y, down[0]};
+    };
+    const auto ra = run(std::type_identity<beam2>{}), rk = run(std::type_identity<beam2_kept>{});
+    const std::vector<double>&ya = ra.first, &yb = rk.first;
+    const double ta = ra.second;
+    // The first downward crossing is at half a period.
+    MESSAGE("half period ", ta, " exact ", period / 2);
+    CHECK(std::abs(2 * ta / period - 1) < 1e-3);
+    REQUIRE(ya.size() == yb.size());
+    double worst = 0, size = 0;
+    for (std::size_t i = 0; i < ya.size(); ++i) {
+      worst = std::max(worst, std::abs(ya[i] - yb[i]));
+      size = std::max(size, std::abs(yb[i]));
+    }
+    MESSAGE("largest difference condensed - kept: ", worst / size, " of the amplitude");
+    CHECK(size > 5e-4);
+    CHECK(worst <= 1e-9 * size);
   }
 
   TEST_CASE("errors of a condensed composite") {

@@ -25,13 +25,14 @@ namespace pradis {
 
 namespace condensed_detail {
 
-/// Which DOFs of the underlying composite are kept (its external DOFs and the hidden q4 slots of its rotational nodes,
-/// in increasing order) and which are condensed (the other internal DOFs); `pos[k]` is composite DOF k's index among
-/// the kept or among the condensed ones.
+/// Which DOFs of the underlying composite are kept (its external DOFs and the hidden q4 slots of its external
+/// rotational nodes, in increasing order) and which are condensed (the other internal DOFs, the q1..q4 of inner
+/// rotational nodes included); `pos[k]` is composite DOF k's index among the kept or among the condensed ones. `inner`
+/// lists, per inner rotational node (q1..q3 internal), the composite DOFs of its q1, q2, q3, q4.
 struct layout {
   std::array<int, 512> kept{}, cond{}, pos{};
-  int nr = 0, ni = 0;
-  bool inner_node = false;
+  std::array<std::array<int, 4>, 64> inner{};
+  int nr = 0, ni = 0, n_inner = 0, n_outer = 0;
 };
 
 template <class Full>
@@ -39,8 +40,12 @@ constexpr layout layout_of(int ext) {
   layout l;
   std::array<bool, 512> q4{};
   for (const rotation_slot& s : Full::rotation_nodes) {
-    if (s.q1 >= ext) l.inner_node = true;
-    q4[static_cast<std::size_t>(s.q4)] = true;
+    if (s.q1 >= ext)
+      l.inner[static_cast<std::size_t>(l.n_inner++)] = {s.q1, s.q1 + 1, s.q1 + 2, s.q4};
+    else {
+      q4[static_cast<std::size_t>(s.q4)] = true;
+      ++l.n_outer;
+    }
   }
   for (int k = 0; k < element_traits<Full>::n; ++k) {
     const auto kk = static_cast<std::size_t>(k);
@@ -66,8 +71,9 @@ constexpr layout layout_of(int ext) {
 /// values at the last accepted step (the state vector; zero at the start), until the correction is below 1e-10 of the
 /// largest displacement; it returns f_R - K_RI K_II^-1 f_I and the blocks K_RR - K_RI K_II^-1 K_IR, C_RR - K_RI K_II^-1
 /// C_IR, M_RR - K_RI K_II^-1 M_IR. For linear parts this is Guyan (static) condensation. Requirements, checked: a
-/// stiffness block (K), no inner rotational node (q1..q3 internal), and, at run time, no mass or damping on a condensed
-/// DOF (code 100). The parts' admissibility tests (which states the Jacobian checks may use) are not forwarded: they
+/// stiffness block (K) and, at run time, no mass or damping on a condensed DOF (code 100). An inner rotational node
+/// (q1..q3 internal) is condensed with its hidden q4: the element adds the node's norm equation |q| = 1 on the q4 row
+/// (norm_rows) and starts the node at the identity. The parts' admissibility tests (which states the Jacobian checks may use) are not forwarded: they
 /// would need the condensed DOFs, which only a call computes.
 template <class Spec, class... Ps>
 struct condensed {
@@ -77,9 +83,6 @@ struct condensed {
 
  private:
   static constexpr condensed_detail::layout lay_ = condensed_detail::layout_of<full_type>(Spec::ext);
-  static_assert(!lay_.inner_node,
-                "pradis: a condensed composite cannot condense an inner rotational node (its q1..q3 internal): the "
-                "model must give it its q4 norm equation; keep it with pradis::composite");
   static_assert(lay_.ni > 0,
                 "pradis: a condensed composite needs internal DOFs to condense (ENT beyond the hidden q4 slots); with "
                 "none, use pradis::composite");
@@ -122,13 +125,16 @@ struct condensed {
     for (std::size_t i = 0; i < a.size(); ++i) a[i] = full_type::domains[static_cast<std::size_t>(lay_.kept[i])];
     return a;
   }();
-  /// The external rotational nodes, their q4 slots renumbered among the kept DOFs.
+  /// The external rotational nodes, their q4 slots renumbered among the kept DOFs (inner nodes are condensed).
   static constexpr auto rotation_nodes = [] {
-    std::array<rotation_slot, full_type::rotation_nodes.size()> a{};
-    for (std::size_t i = 0; i < a.size(); ++i)
-      a[i] = {full_type::rotation_nodes[i].q1, lay_.pos[static_cast<std::size_t>(full_type::rotation_nodes[i].q4)]};
+    std::array<rotation_slot, static_cast<std::size_t>(lay_.n_outer)> a{};
+    std::size_t n = 0;
+    for (const rotation_slot& s : full_type::rotation_nodes)
+      if (s.q1 < Spec::ext) a[n++] = {s.q1, lay_.pos[static_cast<std::size_t>(s.q4)]};
     return a;
   }();
+  /// Number of inner rotational nodes (q1..q3 internal), condensed with their q4.
+  static constexpr int inner_rotation_nodes = lay_.n_inner;
 
  private:
   struct name_f {
@@ -195,6 +201,7 @@ struct condensed {
     const bool stored = ctx.new_state.size() >= static_cast<std::size_t>(state_at + ni) &&
                         ctx.old_state.size() >= static_cast<std::size_t>(state_at + ni);
     for (int j = 0; j < ni; ++j) fin.u(cond(j)) = stored ? ctx.old_state[static_cast<std::size_t>(state_at + j)] : 0.0;
+    start_inner_nodes(fin);
 
     local_output<full_type> fo;
     fo.want_jacobian = true;
@@ -211,6 +218,7 @@ struct condensed {
         ri(i) = fo.f(cond(i));
         for (int j = 0; j < ni; ++j) kii(i, j) = fo.K(cond(i), cond(j));
       }
+      norm_rows(fin, ri, kii);
       if (!ri.allFinite() || !kii.allFinite())
         ctx.fail(error_code::non_finite, "a part returned a non-finite flow or stiffness on a condensed DOF");
       lu.compute(kii);
@@ -277,6 +285,42 @@ struct condensed {
   using mat_ri = Eigen::Matrix<double, nr, ni>;
   static constexpr int kept(int r) { return lay_.kept[static_cast<std::size_t>(r)]; }
   static constexpr int cond(int j) { return lay_.cond[static_cast<std::size_t>(j)]; }
+  /// The condensed index of component c (0..3 for q1..q4) of inner rotational node n.
+  static constexpr int inner(int n, int c) {
+    return lay_.pos[static_cast<std::size_t>(lay_.inner[static_cast<std::size_t>(n)][static_cast<std::size_t>(c)])];
+  }
+
+  /// An inner rotational node without a stored orientation (the first call; the state vector starts at zero) starts
+  /// at the identity, q = (0, 0, 0, 1), as the model starts its nodes.
+  static void start_inner_nodes(local_input<full_type>& fin) {
+    for (int n = 0; n < lay_.n_inner; ++n) {
+      double lq2 = 0;
+      for (int c = 0; c < 4; ++c) lq2 += fin.u(cond(inner(n, c))) * fin.u(cond(inner(n, c)));
+      if (lq2 < 0.25)
+        for (int c = 0; c < 4; ++c) fin.u(cond(inner(n, c))) = c == 3 ? 1.0 : 0.0;
+    }
+  }
+
+  /// The norm equation of each inner rotational node, on its q4 row (on which the parts put no flow): s (Lq - 1) = 0,
+  /// Lq = |q|, with the row s q^T / Lq. It is the static counterpart of the model's Mu d(Lq)/dt = 0 and removes the
+  /// direction along q, in which the parts' flows do not change, from K_II. Scaling a condensed row changes neither the
+  /// root nor the Schur complements (the row has no kept columns); s, the largest stiffness on the node's q1..q3
+  /// rows, keeps K_II's conditioning.
+  static void norm_rows(const local_input<full_type>& fin, vec_i& ri, mat_ii& kii) {
+    for (int n = 0; n < lay_.n_inner; ++n) {
+      Eigen::Vector4d q;
+      for (int c = 0; c < 4; ++c) q(c) = fin.u(cond(inner(n, c)));
+      const double lq = q.norm();
+      double s = 1;
+      for (int c = 0; c < 3; ++c)
+        for (int j = 0; j < ni; ++j) s = std::max(s, std::abs(kii(inner(n, c), j)));
+      const int row = inner(n, 3);
+      ri(row) = s * (lq - 1);
+      for (int j = 0; j < ni; ++j) kii(row, j) = 0;
+      if (lq > 0)
+        for (int c = 0; c < 4; ++c) kii(row, inner(n, c)) = s * q(c) / lq;
+    }
+  }
 
   full_type full_;
 
