@@ -493,6 +493,45 @@ TEST_SUITE("elements/condensed") {
     CHECK(worst <= 1e-9 * size);
   }
 
+  TEST_CASE("the parts' admissibility tests apply at the condensed state") {
+    // Invariant: a condensed element admits exactly the states at which the kept composite, with the condensed DOFs
+    // solved, admits its parts' states; without a part's test there is none.
+    static_assert(!composite_detail::has_admissible<series>);
+    static_assert(composite_detail::has_admissible<beam2> && composite_detail::has_admissible<star>);
+    const beam2 s(beam2::example());
+    const beam2_kept full(beam2_kept::example());
+    std::mt19937 gen(23);
+    for (int trial = 0; trial < 5; ++trial) {
+      const local_input<beam2> in = random_state<beam2>(gen, {12, 13});
+      CHECK(s.admissible(in));
+    }
+    local_input<beam2> in;
+    in.u(12) = in.u(13) = 1.0;
+    REQUIRE(s.admissible(in));
+    SUBCASE("node B's quaternion near zero: BEAM3's test refuses it") {
+      in.u(13) = 0.1;
+      local_input<beam2_kept> fin;
+      fin.u.head<12>() = in.u.head<12>();
+      fin.u(18) = in.u(12);
+      fin.u(19) = in.u(13);
+      fin.u(20) = 1.0;
+      CHECK(!full.admissible(fin));
+      CHECK(!s.admissible(in));
+    }
+    SUBCASE("B pushed back onto A: the chords collapse") {
+      in.u(6) = -0.97;
+      CHECK(!s.admissible(in));
+    }
+    SUBCASE("a star whose point P1 is pulled onto its centre") {
+      const star st(star::example());
+      local_input<star> sin;
+      CHECK(st.admissible(sin));
+      sin.u(0) = 1.0;  // P1 from (0, 0) to (1, 0); the centre at rest is at (1, 0.7)
+      sin.u(1) = 0.7;
+      CHECK(!st.admissible(sin));
+    }
+  }
+
   TEST_CASE("errors of a condensed composite") {
     SUBCASE("a part's bad parameter: code 100 at NEWINT, naming the part") {
       check_error(evaluation_error(series({{linear_spring::parameters{1.0}, linear_spring::parameters{-2.0}}}), "pair"),

@@ -17,6 +17,7 @@
 #include <string_view>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "pradis/core/element.hpp"
 #include "pradis/elements/composite.hpp"
@@ -73,8 +74,8 @@ constexpr layout layout_of(int ext) {
 /// C_IR, M_RR - K_RI K_II^-1 M_IR. For linear parts this is Guyan (static) condensation. Requirements, checked: a
 /// stiffness block (K) and, at run time, no mass or damping on a condensed DOF (code 100). An inner rotational node
 /// (q1..q3 internal) is condensed with its hidden q4: the element adds the node's norm equation |q| = 1 on the q4 row
-/// (norm_rows) and starts the node at the identity. The parts' admissibility tests (which states the Jacobian checks may use) are not forwarded: they
-/// would need the condensed DOFs, which only a call computes.
+/// (norm_rows) and starts the node at the identity. The parts' admissibility tests (which states the Jacobian checks may
+/// use) are applied at the condensed state (admissible()).
 template <class Spec, class... Ps>
 struct condensed {
   /// The composite the condensation works on (its DOFs: Spec::ext external, Spec::ent internal).
@@ -188,54 +189,16 @@ struct condensed {
 
   /// The condensed flows and blocks (see the type's description).
   void evaluate(const local_input<condensed>& in, local_output<condensed>& out, element_context& ctx) const {
-    local_input<full_type> fin;
-    for (int r = 0; r < nr; ++r) {
-      const int k = lay_.kept[static_cast<std::size_t>(r)];
-      fin.u(k) = in.u(r);
-      fin.v(k) = in.v(r);
-      fin.a(k) = in.a(r);
-    }
-    fin.t = in.t;
+    local_input<full_type> fin = full_input(in);
     // The start: the condensed DOFs of the last accepted step, so that a call is a function of its input and the
     // accepted state alone (not of the calls before it in the step).
     const bool stored = ctx.new_state.size() >= static_cast<std::size_t>(state_at + ni) &&
                         ctx.old_state.size() >= static_cast<std::size_t>(state_at + ni);
     for (int j = 0; j < ni; ++j) fin.u(cond(j)) = stored ? ctx.old_state[static_cast<std::size_t>(state_at + j)] : 0.0;
-    start_inner_nodes(fin);
-
     local_output<full_type> fo;
-    fo.want_jacobian = true;
     Eigen::PartialPivLU<mat_ii> lu;
     vec_i du = vec_i::Zero();
-    int it = 0;
-    for (;;) {
-      ++it;
-      full_.evaluate(fin, fo, ctx);
-      check_quasi_static(fo, ctx);
-      mat_ii kii;
-      vec_i ri;
-      for (int i = 0; i < ni; ++i) {
-        ri(i) = fo.f(cond(i));
-        for (int j = 0; j < ni; ++j) kii(i, j) = fo.K(cond(i), cond(j));
-      }
-      norm_rows(fin, ri, kii);
-      if (!ri.allFinite() || !kii.allFinite())
-        ctx.fail(error_code::non_finite, "a part returned a non-finite flow or stiffness on a condensed DOF");
-      lu.compute(kii);
-      const double rc = lu.rcond();
-      if (!(rc > 1e-14))
-        ctx.singular("the stiffness of the condensed DOFs is singular (reciprocal condition number " +
-                     std::to_string(rc) + "): an internal DOF is held by no stiffness in this state");
-      du = -lu.solve(ri);
-      double scale = 0;
-      for (int k = 0; k < full_traits::n; ++k) scale = std::max(scale, std::abs(fin.u(k)));
-      for (int j = 0; j < ni; ++j) fin.u(cond(j)) += du(j);
-      const double step = du.cwiseAbs().maxCoeff();
-      if (step <= tolerance * std::max(scale, 1e-8)) break;
-      if (it >= max_iterations || !std::isfinite(step))
-        ctx.singular("the condensed DOFs did not converge in " + std::to_string(max_iterations) +
-                     " Newton iterations (last correction " + std::to_string(step) + ")");
-    }
+    const int it = condense(fin, fo, lu, du, ctx);
     if (stored)
       for (int j = 0; j < ni; ++j) ctx.new_state[static_cast<std::size_t>(state_at + j)] = fin.u(cond(j));
     if (ctx.work.size() >= static_cast<std::size_t>(work_at + 2)) {
@@ -255,6 +218,31 @@ struct condensed {
     if constexpr (full_traits::has_k) schur(fo.K, k_ri, lu, out.K);
     if constexpr (full_traits::has_c) schur(fo.C, k_ri, lu, out.C);
     if constexpr (full_traits::has_m) schur(fo.M, k_ri, lu, out.M);
+  }
+
+  /// States the parts' admissibility tests admit (which states the Jacobian checks may use), tested at the condensed
+  /// state: the condensation is solved from the start a model's first call uses (the condensed DOFs at zero, inner
+  /// rotational nodes at the identity). A state at which it fails (singular, not converging, a part's error) is not
+  /// admissible.
+  bool admissible(const local_input<condensed>& in) const requires(composite_detail::has_admissible<full_type>) {
+    local_input<full_type> fin = full_input(in);
+    for (int j = 0; j < ni; ++j) fin.u(cond(j)) = 0.0;
+    std::vector<double> work(static_cast<std::size_t>(full_type::passport.wrk), 0.0),
+        old_state(static_cast<std::size_t>(full_type::passport.str), 0.0), new_state(old_state);
+    element_context ctx(Spec::name, "admissibility test");
+    ctx.work = work;
+    ctx.old_state = old_state;
+    ctx.new_state = new_state;
+    ctx.npar = passport.par;
+    local_output<full_type> fo;
+    Eigen::PartialPivLU<mat_ii> lu;
+    vec_i du = vec_i::Zero();
+    try {
+      condense(fin, fo, lu, du, ctx);
+    } catch (const error&) {
+      return false;
+    }
+    return full_.admissible(fin);
   }
 
   /// Initial values the parts request on kept DOFs; a request on a condensed DOF, which the condensation computes, is
@@ -285,6 +273,57 @@ struct condensed {
   using mat_ri = Eigen::Matrix<double, nr, ni>;
   static constexpr int kept(int r) { return lay_.kept[static_cast<std::size_t>(r)]; }
   static constexpr int cond(int j) { return lay_.cond[static_cast<std::size_t>(j)]; }
+  /// The composite's input with the kept DOFs from `in` (the condensed ones still to be set).
+  static local_input<full_type> full_input(const local_input<condensed>& in) {
+    local_input<full_type> fin;
+    for (int r = 0; r < nr; ++r) {
+      const int k = kept(r);
+      fin.u(k) = in.u(r);
+      fin.v(k) = in.v(r);
+      fin.a(k) = in.a(r);
+    }
+    fin.t = in.t;
+    return fin;
+  }
+
+  /// Newton iterations on the condensed DOFs of fin (started from their values there) until F_I = 0: fo holds the
+  /// composite's flows and blocks at the last evaluation, which was at fin's condensed DOFs minus du; lu is K_II's
+  /// factorisation there. Returns the number of iterations.
+  int condense(local_input<full_type>& fin, local_output<full_type>& fo, Eigen::PartialPivLU<mat_ii>& lu, vec_i& du,
+               element_context& ctx) const {
+    start_inner_nodes(fin);
+    fo.want_jacobian = true;
+    int it = 0;
+    for (;;) {
+      ++it;
+      full_.evaluate(fin, fo, ctx);
+      check_quasi_static(fo, ctx);
+      mat_ii kii;
+      vec_i ri;
+      for (int i = 0; i < ni; ++i) {
+        ri(i) = fo.f(cond(i));
+        for (int j = 0; j < ni; ++j) kii(i, j) = fo.K(cond(i), cond(j));
+      }
+      norm_rows(fin, ri, kii);
+      if (!ri.allFinite() || !kii.allFinite())
+        ctx.fail(error_code::non_finite, "a part returned a non-finite flow or stiffness on a condensed DOF");
+      lu.compute(kii);
+      const double rc = lu.rcond();
+      if (!(rc > 1e-14))
+        ctx.singular("the stiffness of the condensed DOFs is singular (reciprocal condition number " +
+                     std::to_string(rc) + "): an internal DOF is held by no stiffness in this state");
+      du = -lu.solve(ri);
+      double scale = 0;
+      for (int k = 0; k < full_traits::n; ++k) scale = std::max(scale, std::abs(fin.u(k)));
+      for (int j = 0; j < ni; ++j) fin.u(cond(j)) += du(j);
+      const double step = du.cwiseAbs().maxCoeff();
+      if (step <= tolerance * std::max(scale, 1e-8)) return it;
+      if (it >= max_iterations || !std::isfinite(step))
+        ctx.singular("the condensed DOFs did not converge in " + std::to_string(max_iterations) +
+                     " Newton iterations (last correction " + std::to_string(step) + ")");
+    }
+  }
+
   /// The condensed index of component c (0..3 for q1..q4) of inner rotational node n.
   static constexpr int inner(int n, int c) {
     return lay_.pos[static_cast<std::size_t>(lay_.inner[static_cast<std::size_t>(n)][static_cast<std::size_t>(c)])];
