@@ -66,6 +66,39 @@ struct soft_spec {
   static constexpr int ext = 2, ent = 1;
 };
 using soft_series = condensed<soft_spec, part<linear_spring, 0, 2>, part<atan_spring, 2, 1>>;
+/// A saturating spring from the external DOF to the condensed one, pulled there by a constant force: with |P| above
+/// pi / 2 the condensed DOF has no equilibrium.
+struct pulled_spec {
+  static constexpr std::string_view name = "PULL1C";
+  static constexpr std::string_view title = "a saturating spring pulled by a constant force at its condensed end";
+  static constexpr int ext = 1, ent = 1;
+};
+using pulled_spring = condensed<pulled_spec, part<atan_spring, 0, 1>, part<constant_force, 1>>;
+/// A spring whose force is d |d|, d = u1 - u2: its stiffness vanishes at rest, so Newton converges only linearly there.
+struct square_spring {
+  static constexpr pradis::passport passport{.name = "SQS", .ext = 2, .par = 0, .adr = 1, .ign = 23};
+  static constexpr element_help help{.title = "test spring with force d |d|",
+                                     .name = "test",
+                                     .field = "test",
+                                     .dofs = "1 - a\n2 - b",
+                                     .parameters = "",
+                                     .work = "",
+                                     .special = "none"};
+  struct parameters {};
+  explicit square_spring(parameters) {}
+  static square_spring from_parameters(std::span<const double>) { return square_spring({}); }
+  void evaluate(const local_input<square_spring>& in, local_output<square_spring>& out, element_context&) const {
+    const double d = in.u(0) - in.u(1), f = d * std::abs(d), k = 2 * std::abs(d);
+    out.f << f, -f;
+    if (out.want_jacobian) out.K << k, -k, -k, k;
+  }
+};
+struct square_spec {
+  static constexpr std::string_view name = "SQUARE1C";
+  static constexpr std::string_view title = "a spring of force d |d| with its far end condensed";
+  static constexpr int ext = 1, ent = 1;
+};
+using square_end = condensed<square_spec, part<square_spring, 0, 1>>;
 
 /// Parts that put mass, damping, or an initial value on the condensed DOF (all refused).
 struct bad_spec {
@@ -190,6 +223,26 @@ TEST_SUITE("elements/condensed") {
       CHECK(c.work[static_cast<std::size_t>(series::work_at)] <= 2.0);
     }
     CHECK(c.work[static_cast<std::size_t>(series::work_at + 1)] <= 10.0);
+  }
+
+  TEST_CASE("the damped Newton iterations converge where plain Newton cycles: a weak spring in series with a saturating one") {
+    // r(x) = k x + atan(x - 5), k = 1e-3, from x = 0 (A at 0, B at 5): plain Newton overshoots ever further and ends
+    // cycling between about -+ pi / (2 k); the line search (natural monotonicity) keeps the iterates near the root,
+    // x* = 5 - tan(k x*) = 4.99500...
+    soft_series s({{linear_spring::parameters{1e-3}, atan_spring::parameters{}}});
+    cond_context<soft_series> c("soft");
+    local_input<soft_series> in;
+    in.u << 0.0, 5.0;
+    local_output<soft_series> out;
+    s.evaluate(in, out, c.ctx);
+    const double x = c.new_s[0];
+    CHECK(std::abs(1e-3 * x + std::atan(x - 5)) < 1e-12);
+    CHECK(x == doctest::Approx(4.995).epsilon(1e-4));
+    // Both ends carry the spring force k x* (the flows the system applies to the element).
+    CHECK(out.f(0) == doctest::Approx(-1e-3 * x).epsilon(1e-10));
+    CHECK(out.f(1) == doctest::Approx(1e-3 * x).epsilon(1e-10));
+    MESSAGE("Newton iterations: ", c.work[static_cast<std::size_t>(soft_series::work_at)]);
+    CHECK(c.work[static_cast<std::size_t>(soft_series::work_at)] <= 30.0);
   }
 
   TEST_CASE("a mass on the condensed springs moves as a mass on one spring of the series stiffness, to round-off") {
@@ -564,15 +617,23 @@ TEST_SUITE("elements/condensed") {
       check_error(evaluation_error(s, "line"), error_code::singular_situation, "LINE2C", "line",
                   "the stiffness of the condensed DOFs is singular");
     }
-    SUBCASE("Newton on the condensed DOF does not converge: code 75 after 30 iterations") {
-      // r(x) = k x + atan(x - 5), k = 1e-3, from x = 0: Newton on the saturating atan overshoots ever further and ends
-      // cycling between about -+ pi / (2 k).
-      local_input<soft_series> in;
-      in.u << 0.0, 5.0;
+    SUBCASE("Newton on the condensed DOF converges too slowly: code 75 after 30 iterations") {
+      // r(x) = (x - 1) |x - 1| from x = 0: at the double root Newton halves the distance per iteration, so the
+      // correction is still 2^-30 ~ 1e-9 (above the tolerance 1e-10) after 30 iterations.
+      local_input<square_end> in;
+      in.u << 1.0;
+      check_error(evaluation_error(square_end(square_end::parameters{std::tuple{square_spring::parameters{}}}), "square", in),
+                  error_code::singular_situation, "SQUARE1C", "square",
+                  "the condensed DOFs did not converge in 30 Newton iterations");
+    }
+    SUBCASE("no equilibrium of the condensed DOF: code 75 when its stiffness vanishes") {
+      // r(x) = atan(x - u1) - P with P = 2 > pi / 2 has no root: the iterations walk off to where the saturated
+      // spring's stiffness is zero.
+      local_input<pulled_spring> in;
+      in.u << 0.5;
       check_error(
-          evaluation_error(soft_series({{linear_spring::parameters{1e-3}, atan_spring::parameters{}}}), "soft", in),
-          error_code::singular_situation, "SOFT2C", "soft",
-          "the condensed DOFs did not converge in 30 Newton iterations");
+          evaluation_error(pulled_spring({{atan_spring::parameters{}, constant_force::parameters{2.0}}}), "pulled", in),
+          error_code::singular_situation, "PULL1C", "pulled", "the stiffness of the condensed DOFs is singular");
     }
     SUBCASE("a non-finite input: code 150, no NaN leaves the element") {
       local_input<series> in;

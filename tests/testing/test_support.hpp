@@ -12,6 +12,8 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include "pradis/core/error.hpp"
 
@@ -35,11 +37,30 @@ std::optional<pradis::error> error_of(F&& f) {
 /// Whether `s` contains `part`.
 inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
-/// A fresh scratch directory for tests that write files.
+/// The scratch directories made by scratch_dir; all are removed when the test program exits.
+struct scratch_registry {
+  std::vector<std::filesystem::path> dirs;
+  scratch_registry() = default;
+  scratch_registry(const scratch_registry&) = delete;
+  scratch_registry& operator=(const scratch_registry&) = delete;
+  ~scratch_registry() {
+    for (const auto& d : dirs) {
+      std::error_code ec;
+      std::filesystem::remove_all(d, ec);  // best effort: a test may have made a file read-only
+    }
+  }
+  static scratch_registry& instance() {
+    static scratch_registry r;
+    return r;
+  }
+};
+
+/// A fresh scratch directory for tests that write files (removed at the program's exit).
 inline std::filesystem::path scratch_dir(const std::string& tag) {
   std::random_device rd;
   auto p = std::filesystem::temp_directory_path() / ("pradis_" + tag + "_" + std::to_string(rd()));
   std::filesystem::create_directories(p);
+  scratch_registry::instance().dirs.push_back(p);
   return p;
 }
 

@@ -107,6 +107,8 @@ struct condensed {
   /// Newton iterations allowed per call; the correction test, relative to the largest displacement.
   static constexpr int max_iterations = 30;
   static constexpr double tolerance = 1e-10;
+  /// Halvings of a Newton step allowed in its line search.
+  static constexpr int max_halvings = 10;
   /// Index in the state vector of the first condensed displacement (after the parts' states), and in the work vector of
   /// W(iterations of the last call), then W(iterations in all).
   static constexpr int state_at = full_type::passport.str;
@@ -288,25 +290,24 @@ struct condensed {
 
   /// Newton iterations on the condensed DOFs of fin (started from their values there) until F_I = 0: fo holds the
   /// composite's flows and blocks at the last evaluation, which was at fin's condensed DOFs minus du; lu is K_II's
-  /// factorisation there. Returns the number of iterations.
+  /// factorisation there. Returns the number of Newton iterations (line-search trials not counted).
+  ///
+  /// Each Newton step du is damped by backtracking (halving it up to `max_halvings` times) until the natural
+  /// monotonicity test passes: the simplified Newton correction at the trial, K_II^-1 F_I with the factorisation of the
+  /// step's start, is shorter than (1 - lambda / 4) |du|. Unlike |F_I|, this test does not depend on the units or
+  /// scales of the residual's rows (forces, moments, the norm rows). A trial state at which a part reports a singular
+  /// situation (code 75) fails the test. Near the root the full step passes at once, so the line search costs one
+  /// back-substitution there; far from it (the external nodes moved far since the last accepted step) it keeps the
+  /// iterates from diverging.
   int condense(local_input<full_type>& fin, local_output<full_type>& fo, Eigen::PartialPivLU<mat_ii>& lu, vec_i& du,
                element_context& ctx) const {
     start_inner_nodes(fin);
     fo.want_jacobian = true;
-    int it = 0;
+    mat_ii kii;
+    vec_i ri;
+    residual(fin, fo, ri, kii, ctx);
+    int it = 1;
     for (;;) {
-      ++it;
-      full_.evaluate(fin, fo, ctx);
-      check_quasi_static(fo, ctx);
-      mat_ii kii;
-      vec_i ri;
-      for (int i = 0; i < ni; ++i) {
-        ri(i) = fo.f(cond(i));
-        for (int j = 0; j < ni; ++j) kii(i, j) = fo.K(cond(i), cond(j));
-      }
-      norm_rows(fin, ri, kii);
-      if (!ri.allFinite() || !kii.allFinite())
-        ctx.fail(error_code::non_finite, "a part returned a non-finite flow or stiffness on a condensed DOF");
       lu.compute(kii);
       const double rc = lu.rcond();
       if (!(rc > 1e-14))
@@ -315,13 +316,49 @@ struct condensed {
       du = -lu.solve(ri);
       double scale = 0;
       for (int k = 0; k < full_traits::n; ++k) scale = std::max(scale, std::abs(fin.u(k)));
-      for (int j = 0; j < ni; ++j) fin.u(cond(j)) += du(j);
       const double step = du.cwiseAbs().maxCoeff();
-      if (step <= tolerance * std::max(scale, 1e-8)) return it;
+      if (step <= tolerance * std::max(scale, 1e-8)) {
+        for (int j = 0; j < ni; ++j) fin.u(cond(j)) += du(j);
+        return it;
+      }
       if (it >= max_iterations || !std::isfinite(step))
         ctx.singular("the condensed DOFs did not converge in " + std::to_string(max_iterations) +
                      " Newton iterations (last correction " + std::to_string(step) + ")");
+      ++it;
+      const double dn = du.norm();
+      vec_i base;
+      for (int j = 0; j < ni; ++j) base(j) = fin.u(cond(j));
+      double lambda = 1;
+      for (int h = 0;; ++h) {
+        for (int j = 0; j < ni; ++j) fin.u(cond(j)) = base(j) + lambda * du(j);
+        bool singular = false;
+        try {
+          residual(fin, fo, ri, kii, ctx);
+        } catch (const error& e) {
+          if (e.code() != error_code::singular_situation || h >= max_halvings) throw;
+          singular = true;
+        }
+        // Natural monotonicity: the simplified Newton correction at the trial (with the base point's K_II)
+        // shorter than the step's correction.
+        if (!singular && (lu.solve(ri).norm() <= (1 - lambda / 4) * dn || h >= max_halvings)) break;
+        lambda /= 2;
+      }
     }
+  }
+
+  /// The residual F_I and the block K_II (with the inner nodes' norm rows) at fin; code 100 for mass or damping on a
+  /// condensed DOF, code 150 for a non-finite flow or stiffness.
+  void residual(const local_input<full_type>& fin, local_output<full_type>& fo, vec_i& ri, mat_ii& kii,
+                element_context& ctx) const {
+    full_.evaluate(fin, fo, ctx);
+    check_quasi_static(fo, ctx);
+    for (int i = 0; i < ni; ++i) {
+      ri(i) = fo.f(cond(i));
+      for (int j = 0; j < ni; ++j) kii(i, j) = fo.K(cond(i), cond(j));
+    }
+    norm_rows(fin, ri, kii);
+    if (!ri.allFinite() || !kii.allFinite())
+      ctx.fail(error_code::non_finite, "a part returned a non-finite flow or stiffness on a condensed DOF");
   }
 
   /// The condensed index of component c (0..3 for q1..q4) of inner rotational node n.

@@ -39,6 +39,7 @@
 #include "pradis/elements/planar/planar_rigid_link.hpp"
 #include "pradis/elements/spatial/beam.hpp"
 #include "pradis/elements/spatial/beam_inertia.hpp"
+#include "pradis/elements/spatial/condensed_beam.hpp"
 #include "pradis/elements/spatial/coupling.hpp"
 #include "pradis/elements/spatial/crank_throw.hpp"
 #include "pradis/elements/spatial/reduced_body.hpp"
@@ -79,10 +80,12 @@ using spatial_connector_elements =
 /// against another sphere (docs/contact.md).
 using spatial_contact_elements = type_list<sphere_plane_contact, sphere_sphere_contact>;
 /// Spatial beams: the corotational elastic beam and its inertia (docs/rotations.md), the
-/// crank throw super-elements made of them (THROW, and THROWP with the middle of the pin
-/// external; docs/super-elements.md), and the reduced elastic body FLEX3 with two boundary
-/// nodes and two modes (docs/reduction.md).
-using beam_elements = type_list<elastic_beam, beam_inertia, crank_throw, crank_throw_pin, reduced_body_2x2>;
+/// super-elements made of them (THROW, and THROWP with the middle of the pin external;
+/// BEAM3C, a BEAM3 in four segments with the inner nodes condensed, for large deflection;
+/// docs/super-elements.md), and the reduced elastic body FLEX3 with two boundary nodes and
+/// two modes (docs/reduction.md).
+using beam_elements =
+    type_list<elastic_beam, beam_inertia, condensed_beam, crank_throw, crank_throw_pin, reduced_body_2x2>;
 /// Plates: the 12-DOF triangle plate with side rotations (docs/plates.md).
 using plate_elements = type_list<triangle_plate>;
 /// Hydraulics (docs/domains.md): pressure is the velocity-level unknown, volume flow the flow.
