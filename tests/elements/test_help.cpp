@@ -47,7 +47,7 @@ constexpr std::string_view code100_situation(std::string_view name) {
   if (name == "CAM") return "k <= 0, c < 0";
   if (name == "TDAMPER") return "the velocities do not increase strictly";
   if (name == "SHC3") return "the axis is zero, k <= 0, c < 0";
-  if (name == "BEAM3" || name == "BEAMI3") return "coincide";
+  if (name == "BEAM3" || name == "BEAM3C" || name == "BEAMI3") return "coincide";
   if (name == "TRIPL") return "do not span a triangle";
   if (name == "THROW" || name == "THROWP") return "naming the part";
   if (name == "FLEX3") return "resists a rigid-body motion";
@@ -86,7 +86,7 @@ void check_special() {
       name == "VTAB" || name == "PNSRC" || name == "PNVOL" || name == "PNCHP" || name == "PNCYL")
     CHECK(special.find("code 90") != std::string::npos);
   if (name == "LINKD" || name == "BODY3" || name == "F3B" || name == "M3B" || name == "SD3" || name == "RSD3" ||
-      name == "SPH3" || name == "REV3" || name == "BEAM3" || name == "BEAMI3" || name == "SHC3" || name == "HVOL" ||
+      name == "SPH3" || name == "REV3" || name == "BEAM3" || name == "BEAM3C" || name == "BEAMI3" || name == "SHC3" || name == "HVOL" ||
       name == "HCYL" || name == "HACC" || name == "ELLPL" || name == "PNVOL" || name == "PNCHP" || name == "PNCYL" ||
       name == "PNORF" || name == "CSPHPL" || name == "CSPHSP" || name == "THROW" || name == "THROWP" ||
       name == "FLEX3")
@@ -103,7 +103,7 @@ void check_all_special(pradis::type_list<Es...>) {
 
 TEST_SUITE("elements/help") {
   TEST_CASE("the help text of every library element names its code-100 situations (and 90 / 75 where they apply)") {
-    static_assert(pradis::elements::library_elements::size == 81);
+    static_assert(pradis::elements::library_elements::size == 82);
     check_all_special(pradis::elements::library_elements{});
   }
 }

@@ -127,8 +127,16 @@ class driver_core {
         m_, asm_, solver, s_, rhs_, stats_, log_, [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
     warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);
     index3_.assign(static_cast<std::size_t>(m_.dof_count()), 0);
-    for (int i = 0; i < static_cast<int>(kind.size()); ++i)
-      if (kind[static_cast<std::size_t>(i)] == 3) index3_[static_cast<std::size_t>(asm_.dof_of(i))] = 1;
+    massless_count_ = 0;
+    massless_dof_ = -1;
+    std::vector<char> q4(static_cast<std::size_t>(m_.dof_count()), 0);  // hidden q4: not counted as massless
+    for (const auto& node : m_.rotation_nodes()) q4[static_cast<std::size_t>(node.dofs[3])] = 1;
+    for (int i = 0; i < static_cast<int>(kind.size()); ++i) {
+      const int d = asm_.dof_of(i);
+      if (kind[static_cast<std::size_t>(i)] == 3) index3_[static_cast<std::size_t>(d)] = 1;
+      if (kind[static_cast<std::size_t>(i)] == 0 && !q4[static_cast<std::size_t>(d)] && massless_count_++ == 0)
+        massless_dof_ = d;
+    }
   }
   /// The end of the zero step: the pseudo-acceleration starts at the consistent
   /// acceleration; flows and work vectors at t0 (no Jacobian); the zero step
@@ -170,6 +178,11 @@ class driver_core {
   /// necessary for index-3 multipliers (they are determined by the positions,
   /// not by an integrated derivative; Hairer and Wanner, Solving ODEs II, VII.3).
   std::vector<char> index3_;
+  /// Equations with neither mass nor viscosity (algebraic, found at the zero step; index-3 multipliers and the
+  /// rotational nodes' hidden q4 not counted), and the first one's DOF (-1 if none): the undamped-scheme warning of
+  /// simulation::run names it.
+  int massless_count_ = 0;
+  int massless_dof_ = -1;
   std::vector<double> rhs_;
   run_options opt_{};
   run_statistics stats_{};

@@ -104,6 +104,19 @@ inline std::string undamped_constraint_note(std::string_view scheme) {
          "to step; HHT or GALPHA damp the alternation (the motion is not affected)";
 }
 
+/// Cut steps of one stage after which an undamped scheme on a model with massless DOFs is warned about.
+inline constexpr long undamped_massless_cuts = 50;
+
+/// The warning when a stage of an undamped scheme has cut `cuts` steps and the model has `count` DOFs with neither
+/// mass nor viscosity, the first named `example` (docs/rotations.md, "Quasi-static large deflection").
+inline std::string undamped_massless_warning(std::string_view scheme, long cuts, int count, const std::string& example) {
+  return "warning: " + std::to_string(cuts) + " steps of this stage were cut and " + std::to_string(count) +
+         " DOFs have neither mass nor viscosity (the first: '" + example + "'); " + std::string(scheme) +
+         " has no numerical damping, so the velocities of such DOFs alternate from step to step and the predictor "
+         "extrapolates them: a quasi-static run (loads ramped on massless DOFs) converges with GALPHA and "
+         "RHOINF = 0, or HHT";
+}
+
 /// The warning of bdf_simulation on a model with index-3 constraints.
 inline constexpr std::string_view bdf_index3_warning =
     "warning: the model has index-3 constraints (exact joints such as LINKX, SPH3X, REV3X): BDF tests the "

@@ -57,8 +57,9 @@ class simulation;
 template <class... Es, Integrator Scheme, LinearSolver Solver>
 class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<model<Es...>> {
   using core = detail::driver_core<model<Es...>>;
-  using core::asm_, core::index3_, core::log_, core::m_, core::opt_, core::prescribed_, core::recommended_, core::rhs_, core::s0_,
-      core::s_, core::started_, core::stats_, core::t_, core::last_failure_;
+  using core::asm_, core::index3_, core::massless_count_, core::massless_dof_, core::log_, core::m_, core::opt_,
+      core::prescribed_, core::recommended_, core::rhs_, core::s0_, core::s_, core::started_, core::stats_, core::t_,
+      core::last_failure_;
   using core::bad_dof, core::checked, core::commit, core::context_for, core::evaluate, core::for_each_instance,
       core::new_integration, core::raise;
 
@@ -103,6 +104,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     if (h_nominal_ <= 0 || h_nominal_ > opt.smax) h_nominal_ = opt.smax;
     if (opt.error_control && stats_.steps == 0) h_nominal_ = opt.smin;  // PRADIS: start with steps of SMIN
     long controlled_steps = 0, steps_at_smax = 0;  // error control: did the tolerance ever limit the step?
+    long cut_in_stage = 0;                         // failed steps (Newton, singular situations) of this stage
     while (t_ < opt.end * (1 - 1e-14) - 1e-300) {
       const double target = std::min(next_out, opt.end);
       bool clipped = false;
@@ -136,6 +138,9 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
         }
       } else {
         ++stats_.rejected_steps;
+        if (++cut_in_stage == detail::undamped_massless_cuts && massless_count_ > 0 && detail::undamped(scheme_))
+          log_.write(detail::undamped_massless_warning(scheme_label(), cut_in_stage, massless_count_,
+                                                       m_.dof_name(massless_dof_)));
         h_nominal_ = h * 0.5;
         successes_ = 0;
         if (h_nominal_ < opt.smin) fail_at_smin(h);

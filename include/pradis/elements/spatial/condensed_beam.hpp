@@ -40,7 +40,8 @@ struct spec {
     return a;
   }();
   static constexpr std::string_view special =
-      "code 100 as BEAM3 (parameter numbers are BEAM3C's); code 75 if a segment reports one (a quaternion norm or a "
+      "code 100 if E, G, A, Iy, Iz or J is not positive, A and B coincide, the section vector is parallel to A -> B "
+      "or a parameter is not finite (as BEAM3, with BEAM3C's parameter numbers); code 75 if a segment reports one (a quaternion norm or a "
       "chord near zero, a local rotation of a segment reaching 180 degrees), if the condensed inner nodes' Newton "
       "iterations do not converge in 30 steps or their stiffness is singular (the step is cut). The inner nodes are "
       "quasi-static: the element has no mass (add BEAMI3 between the same nodes). Run static or slow loading with a "
