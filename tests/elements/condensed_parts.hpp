@@ -6,6 +6,7 @@
 #include <array>
 #include <string_view>
 #include <tuple>
+#include <vector>
 
 #include "pradis/elements/condensed.hpp"
 #include "pradis/elements/library.hpp"
@@ -90,5 +91,22 @@ using beam2_first = part<elastic_beam, 0, 1, 2, 3, 4, 5, 12, 13, 14, 15, 16, 17,
 using beam2_second = part<elastic_beam, 12, 13, 14, 15, 16, 17, 6, 7, 8, 9, 10, 11, 20, 19>;
 using beam2_kept = composite<beam2_kept_spec, beam2_first, beam2_second>;
 using beam2 = condensed<beam2_spec, beam2_first, beam2_second>;
+
+/// A context with its own work and state vectors for an element of type E (for calling it outside a model).
+template <class E>
+struct cond_context {
+  std::vector<double> work = std::vector<double>(static_cast<std::size_t>(E::passport.wrk), 0.0);
+  std::vector<double> old_s = std::vector<double>(static_cast<std::size_t>(E::passport.str), 0.0);
+  std::vector<double> new_s = std::vector<double>(static_cast<std::size_t>(E::passport.str), 0.0);
+  element_context ctx;
+  explicit cond_context(std::string_view name) : ctx(E::passport.name, name) {
+    ctx.work = work;
+    ctx.old_state = old_s;
+    ctx.new_state = new_s;
+    ctx.npar = E::passport.par;
+  }
+  /// The step is accepted: the new state becomes the old (the spans stay valid: same sizes).
+  void accept() { old_s = new_s; }
+};
 
 }  // namespace pradis_condensed_tests

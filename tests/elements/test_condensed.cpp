@@ -119,21 +119,6 @@ struct line_spec {
 };
 using straight_pair = condensed<line_spec, part<planar_link, 0, 1, 4, 5>, part<planar_link, 4, 5, 2, 3>>;
 
-/// A context with its own work and state vectors for an element of type E.
-template <class E>
-struct cond_context {
-  std::vector<double> work = std::vector<double>(static_cast<std::size_t>(E::passport.wrk), 0.0);
-  std::vector<double> old_s = std::vector<double>(static_cast<std::size_t>(E::passport.str), 0.0);
-  std::vector<double> new_s = std::vector<double>(static_cast<std::size_t>(E::passport.str), 0.0);
-  element_context ctx;
-  explicit cond_context(std::string_view name) : ctx(E::passport.name, name) {
-    ctx.work = work;
-    ctx.old_state = old_s;
-    ctx.new_state = new_s;
-    ctx.npar = E::passport.par;
-  }
-};
-
 /// A random state around the reference (displacements of +-0.1, hidden q4 slots near 1).
 template <class E>
 local_input<E> random_state(std::mt19937& gen, std::initializer_list<int> q4 = {}) {

@@ -14,6 +14,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "condensed_parts.hpp"
 #include "element_test_support.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/simulation.hpp"
@@ -25,6 +26,7 @@ using namespace pradis;
 using namespace pradis::elements;
 using pradis_element_tests::check_error;
 using pradis_element_tests::error_from;
+using pradis_condensed_tests::cond_context;
 
 namespace {
 
@@ -83,23 +85,6 @@ tip_result cantilever(double alpha, bool kept, Scheme scheme = generalized_alpha
           sim.statistics().newton_iterations};
 }
 
-/// A context with the element's own work and state vectors.
-template <class E>
-struct beam_context {
-  std::vector<double> work = std::vector<double>(static_cast<std::size_t>(E::passport.wrk), 0.0);
-  std::vector<double> old_s = std::vector<double>(static_cast<std::size_t>(E::passport.str), 0.0);
-  std::vector<double> new_s = std::vector<double>(static_cast<std::size_t>(E::passport.str), 0.0);
-  element_context ctx;
-  explicit beam_context(std::string_view name) : ctx(E::passport.name, name) {
-    ctx.work = work;
-    ctx.old_state = old_s;
-    ctx.new_state = new_s;
-    ctx.npar = E::passport.par;
-  }
-  /// The step is accepted: the new state becomes the old.
-  void accept() { old_s = new_s; }
-};
-
 }  // namespace
 
 TEST_SUITE("elements/condensed beam") {
@@ -134,8 +119,8 @@ TEST_SUITE("elements/condensed beam") {
     const elastic_beam::parameters q = elastic_beam::example();
     condensed_beam c(q);
     elastic_beam b(q);
-    beam_context<condensed_beam> cc("chain");
-    beam_context<elastic_beam> bc("one");
+    cond_context<condensed_beam> cc("chain");
+    cond_context<elastic_beam> bc("one");
     c.new_integration(cc.ctx);
     b.new_integration(bc.ctx);
     const Eigen::Vector3d axis = Eigen::Vector3d(1, -2, 0.5).normalized();
@@ -212,7 +197,7 @@ TEST_SUITE("elements/condensed beam") {
     const auto with = [](auto change) {
       elastic_beam::parameters q = elastic_beam::example();
       change(q);
-      beam_context<condensed_beam> c("arm");
+      cond_context<condensed_beam> c("arm");
       return error_from([&] { condensed_beam(q).new_integration(c.ctx); });
     };
     check_error(with([](auto& q) { q.e = 0; }), error_code::invalid_parameter, "BEAM3C", "arm", "Young's modulus");
@@ -235,7 +220,7 @@ TEST_SUITE("elements/condensed beam") {
     // B pushed back onto A: the first segment's chord... every chord vanishes only if the inner nodes do too; the
     // condensation then fails (singular or not converging) or a segment reports its chord: code 75 either way.
     condensed_beam c(elastic_beam::example());
-    beam_context<condensed_beam> cc("crushed");
+    cond_context<condensed_beam> cc("crushed");
     c.new_integration(cc.ctx);
     const elastic_beam::parameters q = elastic_beam::example();
     local_input<condensed_beam> in;
