@@ -97,6 +97,44 @@ TEST_SUITE("core/checkpoint") {
     CHECK(std::abs(q4) > 0.5);  // the hidden DOF took part (q4 = cos(theta/2) |q|)
   }
 
+  TEST_CASE("an index-3 pendulum under error control restarts bit for bit: its multiplier stays out of the error test") {
+    // A point mass on the exact rigid link LINKX (its force a Lagrange multiplier, an index-3 DOF found at the zero
+    // step), released from the horizontal, with error control. The error test leaves index-3 multipliers out
+    // (Hairer and Wanner, Solving ODEs II, VII.3); a restored run must too, so the checkpoint keeps the DOF classes
+    // of the zero step (format version 3). Before it did, the restored run tested the multiplier and took other steps.
+    using pendulum = model<point_mass, planar_rigid_link, constant_force>;
+    auto build_pendulum = [](pendulum& m) {
+      const dof x = m.add_dof("x"), y = m.add_dof("y");
+      m.add<point_mass>("mx", {1.0}, x);
+      m.add<point_mass>("my", {1.0}, y);
+      m.add<constant_force>("weight", {-9.81}, y);
+      m.add<planar_rigid_link>("link", {0.0, 0.0, 1.0, 0.0}, m.ground(), m.ground(), x, y);
+    };
+    auto controlled = [](double end) {
+      run_options o = stage(end);
+      o.smax = 0.05;
+      o.error_control = true;
+      o.drltx = 1e-4;
+      return o;
+    };
+    pendulum a;
+    build_pendulum(a);
+    simulation sa(a, newmark{});
+    sa.run(controlled(0.25));
+    std::stringstream cp;
+    sa.save_checkpoint(cp);
+    sa.run(controlled(0.6));
+    pendulum b;
+    build_pendulum(b);
+    simulation sb(b, newmark{});
+    sb.load_checkpoint(cp);
+    sb.run(controlled(0.6));
+    MESSAGE("pendulum: ", sa.statistics().steps, " steps, ", sa.statistics().error_rejections,
+            " rejected by the error test; restored ", sb.statistics().steps, ", ", sb.statistics().error_rejections);
+    CHECK(sa.statistics().steps > 20);  // the error test chose the steps (SMAX alone: 12)
+    check_same_runs(a, sa, b, sb);
+  }
+
   TEST_CASE("a restarted run reproduces the uninterrupted run bit for bit") {
     check_restart<two_body_model>([](two_body_model& m) { build(m); }, stoermer{}, [](const auto& sa) { return sa.time(); });
   }
@@ -223,12 +261,21 @@ TEST_SUITE("core/checkpoint") {
       std::memcpy(bad.data() + head + n, &sum, sizeof sum);
       refused(bad, "checkpoint damaged: its time is not finite");
     }
+    // A DOF class (the payload's last field, one double per DOF) that is none of 0, 1, 3, with a valid checksum.
+    {
+      std::string bad = full;
+      const double k = 2.0;
+      std::memcpy(bad.data() + head + n - sizeof k, &k, sizeof k);
+      const std::uint64_t sum = pradis::detail::fnv1a(bad.data() + head, n);
+      std::memcpy(bad.data() + head + n, &sum, sizeof sum);
+      refused(bad, "checkpoint damaged: a DOF class is out of range");
+    }
     // Another format version, and the unversioned format of earlier pradis.
     {
       std::string bad = full;
       const std::uint32_t v = checkpoint_version + 1;
       std::memcpy(bad.data() + 8, &v, sizeof v);
-      refused(bad, "checkpoint version 3 cannot be read; this pradis reads version 2");
+      refused(bad, "checkpoint version 4 cannot be read; this pradis reads version 3");
       refused("PRADCK01" + full.substr(8), "checkpoint version 1");
     }
     // Bytes after the checksum are not read (a session appends its record there).

@@ -35,6 +35,7 @@
 #include "pradis/linalg/sparsity.hpp"
 #include "pradis/model/model.hpp"
 #include "../elements/condensed_parts.hpp"
+#include "testing/test_support.hpp"  // PRADIS_TEST_SANITIZED
 
 // ---------------------------------------------------------------------------
 // Counting allocator hooks
@@ -70,15 +71,6 @@ void counted_delete(void* p) noexcept {
   if (armed) ++counts.deletes;
   std::free(p);
 }
-
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || __has_feature(thread_sanitizer)
-#define PRADIS_TEST_SANITIZED 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define PRADIS_TEST_SANITIZED 1
-#endif
 
 #if defined(__GLIBC__) && !defined(PRADIS_TEST_SANITIZED)
 #define PRADIS_TEST_COUNTS_MALLOC 1

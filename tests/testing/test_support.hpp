@@ -17,7 +17,26 @@
 
 #include "pradis/core/error.hpp"
 
+// Whether this build runs under a sanitizer (the asan-ubsan preset: -O0 with AddressSanitizer and UBSan, about
+// 100x slower than the dev preset's -O1).
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || __has_feature(thread_sanitizer)
+#define PRADIS_TEST_SANITIZED 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#ifndef PRADIS_TEST_SANITIZED
+#define PRADIS_TEST_SANITIZED 1
+#endif
+#endif
+
 namespace pradis_test {
+
+#ifdef PRADIS_TEST_SANITIZED
+inline constexpr bool sanitized = true;
+#else
+inline constexpr bool sanitized = false;
+#endif
 
 /// Bad parameter values for the code-100 tests.
 inline constexpr double inf = std::numeric_limits<double>::infinity();

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The checkpoint format of pradis::simulation (version 2) and the model
+/// The checkpoint format of pradis::simulation (version 3) and the model
 /// fingerprint it carries.
 ///
 /// Layout: the 8-byte magic "PRADCKPT", the format version (uint32), the
@@ -34,7 +34,9 @@
 namespace pradis {
 
 /// The checkpoint format version written and read by this pradis.
-inline constexpr std::uint32_t checkpoint_version = 2;
+/// Version 3 added the DOF classes of the zero step (checkpoint_data::dof_classes); a version-2 checkpoint is refused
+/// (a restored run needs them to leave index-3 multipliers out of its error tests).
+inline constexpr std::uint32_t checkpoint_version = 3;
 
 namespace detail {
 
@@ -185,9 +187,12 @@ struct checkpoint_data {
   global_state state;     ///< u, v, a, p of all DOFs
   Eigen::VectorXd a_previous;  ///< accelerations at the start of the last step (error predictor)
   std::vector<double> work, old_state, new_state;  ///< the model's pools
+  /// Per DOF, its class found at the zero step: 3 the multiplier of an index-3 constraint, 1 an equation with neither
+  /// mass nor viscosity, 0 any other (driver_core::dof_classes).
+  std::vector<double> dof_classes;
 };
 
-/// Writes a checkpoint (version 2) of a model with the given fingerprint.
+/// Writes a checkpoint (version 3) of a model with the given fingerprint.
 inline void write_checkpoint(std::ostream& os, std::uint64_t fingerprint, const checkpoint_data& c) {
   detail::checkpoint_writer w;
   w.put_int(static_cast<std::int64_t>(fingerprint));
@@ -208,6 +213,7 @@ inline void write_checkpoint(std::ostream& os, std::uint64_t fingerprint, const 
   w.put_vector(c.work);
   w.put_vector(c.old_state);
   w.put_vector(c.new_state);
+  w.put_vector(c.dof_classes);
   w.write(os);
 }
 
@@ -261,6 +267,10 @@ inline checkpoint_data read_checkpoint(std::istream& is, std::uint64_t fingerpri
   r.get_vector(c.work, "work vectors");
   r.get_vector(c.old_state, "old state vectors");
   r.get_vector(c.new_state, "new state vectors");
+  c.dof_classes.resize(static_cast<std::size_t>(dofs));
+  r.get_vector(c.dof_classes, "DOF classes");
+  for (const double k : c.dof_classes)
+    if (k != 0 && k != 1 && k != 3) damaged("a DOF class is out of range");
   if (!r.at_end()) damaged("its payload has unread fields");
   return c;
 }

@@ -28,6 +28,10 @@
 
 namespace pradis::detail {
 
+/// The DOF classes of driver_core::dof_classes() (a checkpoint field).
+inline constexpr double dof_class_massless = 1;
+inline constexpr double dof_class_index3 = 3;
+
 /// The state and element-level phases shared by the drivers (see the file comment).
 template <class Model>
 class driver_core {
@@ -126,16 +130,39 @@ class driver_core {
     const std::vector<char> kind = initial_derivatives(
         m_, asm_, solver, s_, rhs_, stats_, log_, [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
     warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);
-    index3_.assign(static_cast<std::size_t>(m_.dof_count()), 0);
-    massless_count_ = 0;
-    massless_dof_ = -1;
-    std::vector<char> q4(static_cast<std::size_t>(m_.dof_count()), 0);  // hidden q4: not counted as massless
+    std::vector<double> classes(static_cast<std::size_t>(m_.dof_count()), 0.0);
+    std::vector<char> q4(classes.size(), 0);  // hidden q4: not counted as massless
     for (const auto& node : m_.rotation_nodes()) q4[static_cast<std::size_t>(node.dofs[3])] = 1;
     for (int i = 0; i < static_cast<int>(kind.size()); ++i) {
-      const int d = asm_.dof_of(i);
-      if (kind[static_cast<std::size_t>(i)] == 3) index3_[static_cast<std::size_t>(d)] = 1;
-      if (kind[static_cast<std::size_t>(i)] == 0 && !q4[static_cast<std::size_t>(d)] && massless_count_++ == 0)
-        massless_dof_ = d;
+      const auto d = static_cast<std::size_t>(asm_.dof_of(i));
+      if (kind[static_cast<std::size_t>(i)] == 3) classes[d] = dof_class_index3;
+      if (kind[static_cast<std::size_t>(i)] == 0 && !q4[d]) classes[d] = dof_class_massless;
+    }
+    set_dof_classes(classes);
+  }
+  /// The DOF classes of the zero step, per DOF: dof_class_index3 (the multiplier of an index-3 constraint),
+  /// dof_class_massless (an equation with neither mass nor viscosity; the hidden q4 not counted) or 0. Checkpoints
+  /// keep them, so that a restored run leaves the same DOFs out of its error tests and warns as the first run.
+  std::vector<double> dof_classes() const {
+    std::vector<double> c(static_cast<std::size_t>(m_.dof_count()), 0.0);
+    for (std::size_t d = 0; d < c.size() && d < index3_.size(); ++d)
+      if (index3_[d]) c[d] = dof_class_index3;
+    for (std::size_t d = 0; d < c.size() && d < massless_.size(); ++d)
+      if (massless_[d]) c[d] = dof_class_massless;
+    return c;
+  }
+  /// Sets index3_, the massless DOFs and their count from classes as dof_classes() gives them.
+  void set_dof_classes(const std::vector<double>& classes) {
+    index3_.assign(classes.size(), 0);
+    massless_.assign(classes.size(), 0);
+    massless_count_ = 0;
+    massless_dof_ = -1;
+    for (std::size_t d = 0; d < classes.size(); ++d) {
+      if (classes[d] == dof_class_index3) index3_[d] = 1;
+      if (classes[d] == dof_class_massless) {
+        massless_[d] = 1;
+        if (massless_count_++ == 0) massless_dof_ = static_cast<int>(d);
+      }
     }
   }
   /// The end of the zero step: the pseudo-acceleration starts at the consistent
@@ -181,6 +208,7 @@ class driver_core {
   /// Equations with neither mass nor viscosity (algebraic, found at the zero step; index-3 multipliers and the
   /// rotational nodes' hidden q4 not counted), and the first one's DOF (-1 if none): the undamped-scheme warning of
   /// simulation::run names it.
+  std::vector<char> massless_;
   int massless_count_ = 0;
   int massless_dof_ = -1;
   std::vector<double> rhs_;

@@ -220,7 +220,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     if (!started_) throw error(error_code::invalid_option, "no checkpoint before the first stage has run");
     write_checkpoint(os, model_fingerprint(),
                      {t_, h_nominal_, h_prev_, successes_, stats_, s_, a_prev_, m_.work_pool(), m_.old_state_pool(),
-                      m_.new_state_pool()});
+                      m_.new_state_pool(), this->dof_classes()});
   }
   /// Restores a checkpoint written by save_checkpoint() for the same model (the
   /// parameters may differ: $REPLACE). The next run() continues from it exactly
@@ -243,6 +243,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     m_.work_pool() = std::move(c.work);
     m_.old_state_pool() = std::move(c.old_state);
     m_.new_state_pool() = std::move(c.new_state);
+    this->set_dof_classes(c.dof_classes);
     started_ = true;
   }
 

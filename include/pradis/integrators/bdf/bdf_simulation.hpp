@@ -214,7 +214,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     if (!started_) throw error(error_code::invalid_option, "no checkpoint before the first stage has run");
     write_checkpoint(os, model_fingerprint(),
                      {t_, std::max(hist_.step(), 0.0), stats_.last_step, 0, stats_, s_, s_.a, m_.work_pool(),
-                      m_.old_state_pool(), m_.new_state_pool()});
+                      m_.old_state_pool(), m_.new_state_pool(), this->dof_classes()});
   }
   /// Restores a checkpoint of the same model written by either driver (see
   /// save_checkpoint()); the next run() starts its BDF history at order 1 from
@@ -232,6 +232,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     m_.work_pool() = std::move(c.work);
     m_.old_state_pool() = std::move(c.old_state);
     m_.new_state_pool() = std::move(c.new_state);
+    this->set_dof_classes(c.dof_classes);
     started_ = true;
   }
 
