@@ -18,7 +18,7 @@
 //    periodic with T = 10.7314652348828, and the kinetic energy and the length of the
 //    angular momentum are invariants; the default Jacobian refresh of the corrector
 //    keeps the Newton iterations near one per step;
-//  * bad options.
+//  * CONTROL (no error-driven step below it) and bad options.
 
 #include <doctest/doctest.h>
 
@@ -474,6 +474,58 @@ TEST_SUITE("integrators/bdf") {
                          error);
     CHECK_THROWS_WITH_AS(sim.statistic("FOO"), doctest::Contains("unknown statistic 'FOO'"), error);
     CHECK_THROWS_WITH_AS(sim.u(dof{7}), doctest::Contains("DOF index 7 is not a DOF of this model"), error);
+  }
+
+  TEST_CASE("CONTROL: no step below it for accuracy, and a step at it is accepted whatever its error") {
+    // The setting of the SMIN test below (DRLTX = 1e-10 needs steps far below 0.05 on
+    // the oscillator), with CONTROL = 0.05 instead of SMIN: the run reaches END, every
+    // step but the last (clipped at END) is at least CONTROL, and so the error is far
+    // above the tolerance (pradis::simulation's CONTROL has the same meaning).
+    model<point_mass, linear_spring, initial_displacement> m;
+    const dof x = m.add_dof("x");
+    m.add<point_mass>("m", {1.0}, x);
+    m.add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
+    m.add<initial_displacement>("x0", {1.0}, x);
+    bdf_simulation sim(m);
+    std::vector<double> steps;
+    double t_last = 0;
+    sim.on_step([&](const auto& s) {
+      steps.push_back(s.time() - t_last);
+      t_last = s.time();
+    });
+    run_options o = controlled(1.0, 1e-10, 0.1);
+    o.control = 0.05;
+    const run_statistics st = sim.run(o);
+    CHECK(sim.time() == 1.0);
+    REQUIRE(steps.size() >= 2);
+    CHECK(st.steps == static_cast<long>(steps.size()));
+    CHECK(steps.size() <= 21);  // END / CONTROL + the clipped last step
+    for (std::size_t i = 0; i + 1 < steps.size(); ++i) CHECK(steps[i] >= 0.05 * (1 - 1e-12));
+    // (A step above CONTROL may still fail the test; it is then redone at CONTROL.)
+    const double err = std::abs(sim.u(x) - std::cos(osc_w * sim.time()));
+    CAPTURE(err);
+    CHECK(err > 1e-6);  // the tolerance was not met: CONTROL overrode it
+    // The same run without CONTROL meets the tolerance with many more steps.
+    bdf_simulation free_run(m);
+    const run_statistics sf = free_run.run(controlled(1.0, 1e-10, 0.1));
+    MESSAGE("CONTROL 0.05: " << st.steps << " steps, error " << err << "; without: " << sf.steps << " steps, error "
+                             << std::abs(free_run.u(x) - std::cos(osc_w * free_run.time())));
+    CHECK(sf.steps > 5 * st.steps);
+    CHECK(std::abs(free_run.u(x) - std::cos(osc_w * free_run.time())) < 1e-6);
+  }
+
+  TEST_CASE("PREDICT does not apply to BDF: invalid_option") {
+    model<point_mass, linear_spring> m;
+    const dof x = m.add_dof("x");
+    m.add<point_mass>("m", {1.0}, x);
+    m.add<linear_spring>("k", {1.0}, x, m.ground());
+    bdf_simulation sim(m);
+    run_options o = controlled(1.0, 1e-3, 0.1);
+    o.predict = true;
+    CHECK_THROWS_WITH_AS(sim.run(o), doctest::Contains("BDF: PREDICT does not apply"), error);
+    o.predict = false;
+    o.control = -1;
+    CHECK_THROWS_WITH_AS(sim.run(o), doctest::Contains("CONTROL = -1 must be >= 0"), error);
   }
 
   TEST_CASE("SMIN that cannot reach the tolerance fails with step_too_small naming the DOF") {

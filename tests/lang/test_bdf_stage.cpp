@@ -4,7 +4,7 @@
 // schemes following each other from the state the previous stage reached; a
 // $SAVE / $RESTORE between two BDF stages reproducing the uninterrupted run
 // bit for bit (both drivers write the same checkpoint format and BDF starts
-// every stage at order 1); OPTIM on a BDF stage; the keys BDF refuses.
+// every stage at order 1); OPTIM and CONTROL on a BDF stage; the keys BDF refuses.
 
 #include <cmath>
 #include <string>
@@ -104,13 +104,29 @@ TEST_SUITE("lang/bdf") {
     CHECK(s->bdf_ptr()->solver().ordering().level == 3);
   }
 
+  TEST_CASE("CONTROL holds a BDF stage's steps at or above it (the error test gives way)") {
+    // DRLTX = 1E-10 would take hundreds of steps over END = 1 (the first test: 4 periods at
+    // 1E-8); CONTROL = 0.05 keeps every step but the one clipped at END at 0.05 or more.
+    auto tight = lang_test::run(oscillator("    Calc 'BDF (END=1, SMAX=0.1, DRLTX=1E-10)\n"));
+    auto held = lang_test::run(oscillator("    Calc 'BDF (END=1, SMAX=0.1, DRLTX=1E-10, CONTROL=0.05)\n"));
+    REQUIRE(held->bdf_active());
+    const long n_held = held->bdf_ptr()->statistics().steps, n_tight = tight->bdf_ptr()->statistics().steps;
+    CAPTURE(n_held);
+    CAPTURE(n_tight);
+    CHECK(n_held <= 21);
+    CHECK(n_tight > 5 * n_held);
+    CHECK(held->stages()[0].program == "BDF");
+  }
+
   TEST_CASE("keys BDF refuses, and MAXORD out of range, are located errors") {
     std::string e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, BETA=0.3)\n"));
     CHECK(e.find("test.prd:13:") != std::string::npos);
     CHECK(e.find("key BETA belongs to NEWMARK, not to BDF") != std::string::npos);
-    e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, CONTROL=1E-3)\n"));
+    e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, PREDICT=1)\n"));
     CHECK(e.find("test.prd:13:") != std::string::npos);
-    CHECK(e.find("key CONTROL does not apply to BDF") != std::string::npos);
+    CHECK(e.find("key PREDICT does not apply to BDF") != std::string::npos);
+    e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, CONTROL=-1)\n"));
+    CHECK(e.find("CONTROL = -1 must be >= 0") != std::string::npos);
     e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, MAXORD=6)\n"));
     CHECK(e.find("test.prd:13:") != std::string::npos);
     CHECK(e.find("MAXORD") != std::string::npos);

@@ -123,10 +123,10 @@ class action_checker : public model_builder {
                            own + ")");
         }
         if (c.program == "BDF")
-          for (const char* no : {"DABSU", "DRLTU", "DABSI", "DRLTI", "SECOND", "CONTROL", "PREDICT"})
+          for (const char* no : {"DABSU", "DRLTU", "DABSI", "DRLTI", "SECOND", "PREDICT"})
             if (k == no)
               fail(it.loc, "key " + k + " does not apply to BDF (its Newton and error tests are weighted by DRLTX and "
-                           "DABSX; keys of BDF: END OUT SMAX SMIN IGNORE DRLTX DABSX ITR SAVE OPTIM MAXORD)");
+                           "DABSX; keys of BDF: END OUT SMAX SMIN IGNORE DRLTX DABSX CONTROL ITR SAVE OPTIM MAXORD)");
         const std::string owner = owner_of_key(k);
         if (!owner.empty() && owner != c.program)
           fail(it.loc, "key " + k + " belongs to " + owner + ", not to " + c.program +

@@ -37,8 +37,8 @@ inline const std::vector<program_info>& integration_programs() {
       {"BDF", "variable-order (1..5), variable-step BDF with local error control (as DASSL and IDA): the fastest "
               "choice for smooth motions at tight tolerances; damps undamped oscillations slightly",
        "Calculation 'BDF (END=1, DRLTX=1e-6, MAXORD=5)",
-       "MAXORD - highest order, 1..5 (5)\nBDF always controls its error with DRLTX and DABSX; DABSU, DRLTU, DABSI, "
-       "DRLTI, SECOND, CONTROL and PREDICT do not apply\n"},
+       "MAXORD - highest order, 1..5 (5)\nBDF always controls its error with DRLTX and DABSX (and CONTROL); "
+       "DABSU, DRLTU, DABSI, DRLTI, SECOND and PREDICT do not apply\n"},
   };
   return v;
 }

@@ -23,7 +23,9 @@
 /// see set_weights()). The step and the order
 /// (1..max_order) follow IDA's rules; the step never exceeds SMAX or an
 /// element's recommended step (unless IGNORE) and ends exactly at every output
-/// time (OUT) and at END.
+/// time (OUT) and at END. CONTROL (run_options::control): no step below it is
+/// chosen for accuracy, and a step at or below it passes the error test;
+/// PREDICT does not apply (invalid_option).
 ///
 /// Newton (IDA's): modified Newton with the Jacobian and its factorisation kept
 /// across iterations and steps; the iteration converges when
@@ -113,6 +115,8 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     if (!(effective_dabsx(opt) + opt.drltx > 0))
       fail_option("DABSX + DRLTX must be > 0 (they weight the Newton and the error tests)");
     if (!(opt.end > t_)) fail_option("END = " + num(opt.end) + " must be after the current time " + num(t_));
+    if (opt.predict)
+      fail_option("PREDICT does not apply: the BDF predictor is the interpolating polynomial of the last k + 1 steps");
     const run_statistics before = stats_;
     opt_ = opt;
     jac_valid_ = false;
@@ -330,7 +334,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
         const double ypnorm = bdf_detail::wrms(yp, w_);
         if (ypnorm > 0.5 / h) h = 0.5 / ypnorm;
       }
-      h = std::clamp(h, opt_.smin, opt_.smax);
+      h = std::clamp(std::max(h, opt_.control), opt_.smin, opt_.smax);  // CONTROL: no first step below it
     }
     hist_.start(y, yp, h);
     nef_ = ncf_ = 0;
@@ -380,7 +384,9 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     }
     if (opt_.error_control) {
       const bdf_detail::error_estimate est = hist_.test_error(e_, w_, bopt_.fixed_order);
-      if (!est.passed) {
+      // CONTROL: a step at or below it is accepted whatever its error (as in pradis::simulation).
+      const bool at_control = opt_.control > opt_.smin && h <= opt_.control * (1 + 1e-12);
+      if (!est.passed && !at_control) {
         const int worst = worst_dof();
         undo(t0);
         ++stats_.rejected_steps;
@@ -388,6 +394,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
         stats_.limiting_dof = worst;
         ++nef_;
         hist_.on_error_failure(nef_, bopt_.fixed_order);
+        if (opt_.control > opt_.smin && hist_.step() < opt_.control) hist_.set_step(opt_.control);
         if (hist_.step() < opt_.smin * (1 - 1e-12)) {
           if (h > opt_.smin * (1 + 1e-12)) {
             hist_.set_step(opt_.smin);
@@ -407,6 +414,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     // evaluation was at the iterate before the last correction).
     if (!m_.new_state_pool().empty()) evaluate({0, 0, 0}, h, false, 0, true);
     hist_.complete(e_, w_, bopt_.max_order, bopt_.fixed_order, opt_.error_control, opt_.smax);
+    if (opt_.error_control && hist_.step() < opt_.control) hist_.set_step(std::min(opt_.control, opt_.smax));
     if (!opt_.error_control) {
       // The start without error control: the step grows from SMIN to SMAX by a
       // factor the variable-step method of the current order stays stable with
