@@ -117,11 +117,20 @@ inline std::string undamped_massless_warning(std::string_view scheme, long cuts,
          "RHOINF = 0, or HHT";
 }
 
-/// The warning of bdf_simulation on a model with index-3 constraints.
+/// The warning of bdf_simulation on a model with index-3 constraints in the plain index-3 form
+/// (bdf_options::stabilised_index2 off, or a constraint on a driven DOF).
 inline constexpr std::string_view bdf_index3_warning =
-    "warning: the model has index-3 constraints (exact joints such as LINKX, SPH3X, REV3X): BDF tests the "
-    "velocities of the constrained DOFs against tolerances divided by the step (index 2), so the motion is less "
-    "accurate than DRLTX suggests and the joints are met to the Newton tolerance; pradis::simulation with HHT or "
-    "GALPHA under error control keeps both tighter (docs/joints.md)";
+    "warning: the model has index-3 constraints (exact joints such as LINKX, SPH3X, REV3X) in the plain index-3 "
+    "form: BDF tests the velocities of the constrained DOFs against tolerances divided by the step (index 2), so "
+    "the motion is less accurate than DRLTX suggests and the joints are met to the Newton tolerance; the stabilised "
+    "index-2 form (bdf_options::stabilised_index2, the default) or pradis::simulation with HHT or GALPHA under "
+    "error control keeps both tighter (docs/joints.md)";
+
+/// The note of bdf_simulation when a constraint moves with a driven DOF: the stabilised form is not used.
+inline std::string bdf_driven_constraint_note(const std::string& instance, const std::string& dof) {
+  return "note: the index-3 constraint '" + instance + "' acts on the driven DOF '" + dof +
+         "'; its velocity constraint would need the source's motion, so BDF uses the plain index-3 form for this "
+         "model";
+}
 
 }  // namespace pradis::detail

@@ -19,8 +19,9 @@
 /// the weights 1 / (DRLTX |x| + DABSX s) per component, x the value at the
 /// step's start and s the DOF's nominal potential (dof_scale::potential; for a
 /// displacement, the potential times one second; the multipliers of index-3
-/// constraints left out, the velocities of their DOFs weighted by min(1, h),
-/// see set_weights()). The step and the order
+/// constraints left out; index-3 constraints are met in the stabilised
+/// index-2 form, constraints.hpp, or in the plain form with the velocities of
+/// their DOFs weighted by min(1, h), see set_weights()). The step and the order
 /// (1..max_order) follow IDA's rules; the step never exceeds SMAX or an
 /// element's recommended step (unless IGNORE) and ends exactly at every output
 /// time (OUT) and at END. CONTROL (run_options::control): no step below it is
@@ -50,6 +51,7 @@
 #include "pradis/assembly/assembler.hpp"
 #include "pradis/core/diagnostics.hpp"
 #include "pradis/core/element.hpp"
+#include "pradis/integrators/bdf/constraints.hpp"
 #include "pradis/integrators/bdf/corrector.hpp"
 #include "pradis/integrators/bdf/history.hpp"
 #include "pradis/integrators/bdf/options.hpp"
@@ -250,8 +252,11 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   /// derivatives (initialisation.hpp), flows at t0.
   void zero_step() {
     this->start_zero_step(solver_, [&] { build(); });
-    if (std::find(index3_.begin(), index3_.end(), char{1}) != index3_.end())
-      log_.write(std::string(detail::bdf_index3_warning));
+    if (std::find(index3_.begin(), index3_.end(), char{1}) != index3_.end()) {
+      const auto driven = bdf_detail::driven_constraint(m_, index3_, prescribed_);
+      if (driven) log_.write(detail::bdf_driven_constraint_note(driven->first, driven->second));
+      if (driven || !bopt_.stabilised_index2) log_.write(std::string(detail::bdf_index3_warning));
+    }
     jac_valid_ = false;  // the solver holds the factorisation of the initial-derivative matrix
     this->finish_zero_step();
     notify();
@@ -274,18 +279,20 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   /// The error weights 1 / (DRLTX |x| + DABSX s) of the displacements and
   /// velocities of the free DOFs at the current state; zero for the multipliers
   /// of index-3 constraints (driver_core::index3_), which the error and
-  /// corrector tests leave out. The velocities of the DOFs an index-3
-  /// constraint acts on (the columns of its row, index2_) are index-2
-  /// components: their weights are multiplied by min(1, h / 1 s), h the step,
-  /// in the Newton and the error test alike, as the code RADAU5 divides the
-  /// tolerances of index-2 components by h (Hairer and Wanner, Solving ODEs II,
-  /// 2nd ed. 1996; radau5.f, routine RADCOR). Any step projects the incoming
-  /// velocity onto the hidden constraint G v = 0, so their unscaled error does
-  /// not shrink with h and small steps were rejected as often as large ones.
+  /// corrector tests leave out. In the plain index-3 form (no stabilisation)
+  /// the velocities of the DOFs an index-3 constraint acts on (the columns of
+  /// its row, index2_) are index-2 components: their weights are multiplied by
+  /// min(1, h / 1 s), h the step, in the Newton and the error test alike, as
+  /// the code RADAU5 divides the tolerances of index-2 components by h (Hairer
+  /// and Wanner, Solving ODEs II, 2nd ed. 1996; radau5.f, routine RADCOR). Any
+  /// step of that form projects the incoming velocity onto the hidden
+  /// constraint G v = 0, so their unscaled error does not shrink with h and
+  /// small steps were rejected as often as large ones. The stabilised form
+  /// meets G v = 0 itself and tests them unscaled.
   void set_weights(double h) {
     const int ne = asm_.equations();
     const double dabsx = effective_dabsx(opt_);
-    const double hv = std::min(1.0, h);
+    const double hv = stab_.rows.empty() ? std::min(1.0, h) : 1.0;
     w_.resize(2 * ne);
     for (int i = 0; i < ne; ++i) {
       const auto d = asm_.dof_of(i);
@@ -294,22 +301,6 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       const bool index2 = static_cast<std::size_t>(i) < index2_.size() && index2_[static_cast<std::size_t>(i)];
       w_(i) = skip ? 0.0 : 1 / (opt_.drltx * std::abs(s_.u(d)) + dabsx * s);
       w_(ne + i) = skip ? 0.0 : (index2 ? hv : 1.0) / (opt_.drltx * std::abs(s_.v(d)) + dabsx * s);
-    }
-  }
-  /// Marks the equations whose DOF appears in the row of an index-3 constraint
-  /// (index2_, by equation).
-  void mark_index2() {
-    const int ne = asm_.equations();
-    index2_.assign(static_cast<std::size_t>(ne), 0);
-    const auto& pat = asm_.pattern();
-    for (int r = 0; r < ne; ++r) {
-      const auto d = static_cast<std::size_t>(asm_.dof_of(r));
-      if (d >= index3_.size() || !index3_[d]) continue;
-      for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
-        const int c = pat.col[static_cast<std::size_t>(q)];
-        const auto dc = static_cast<std::size_t>(asm_.dof_of(c));
-        if (c != r && !(dc < index3_.size() && index3_[dc])) index2_[static_cast<std::size_t>(c)] = 1;
-      }
     }
   }
   /// Starts the history at order 1 from the current state, with IDA's first
@@ -324,7 +315,9 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       yp(i) = s_.v(d);
       yp(ne + i) = s_.a(d);
     }
-    mark_index2();
+    bdf_detail::mark_constraints(
+        asm_, index3_, bopt_.stabilised_index2 && !bdf_detail::driven_constraint(m_, index3_, prescribed_), index2_,
+        stab_);
     double h = opt_.smin;
     set_weights(opt_.error_control ? 0.001 * (opt_.end - t_) : h);
     if (opt_.error_control) {
@@ -355,8 +348,8 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     bdf_detail::newton_memory mem{jac_valid_, c_jac_, ss_};
     const bool ok = bdf_detail::correct(
         asm_, solver_, s_, y_p_, yp_p_, c, hist_.c_last(), w_, opt_.newton, bopt_.newton_tolerance,
-        bopt_.coefficient_change, mem, rhs_, dy_,
-        stats_, last_failure_, [&](const jacobian_coefficients& jc, bool jac, int k) { evaluate(jc, h, jac, k, true); });
+        bopt_.coefficient_change, mem, rhs_, dy_, stats_, last_failure_, stab_.rows.empty() ? nullptr : &stab_,
+        [&](const jacobian_coefficients& jc, bool jac, int k) { evaluate(jc, h, jac, k, true); });
     jac_valid_ = mem.valid;
     c_jac_ = mem.c_jac;
     ss_ = mem.ss;
@@ -459,7 +452,8 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   Eigen::VectorXd y_p_, yp_p_, w_, e_, dy_;
   double c_jac_ = 0;  // c of the kept factorisation
   double ss_ = 20;    // IDA's rate / (1 - rate) estimate for the first Newton correction
-  std::vector<char> index2_;  // by equation: a DOF of an index-3 constraint's row (mark_index2)
+  std::vector<char> index2_;  // by equation: a DOF of an index-3 constraint's row (mark_constraints)
+  bdf_detail::index2_stabilisation stab_;  // the stabilised index-2 form (empty: none, or the plain index-3 form)
   int nef_ = 0, ncf_ = 0;
   bool jac_valid_ = false;
 };

@@ -18,9 +18,14 @@
 ///   [c_J (1 - x) / (1 + x), c_J (1 + x) / (1 - x)], x = the window argument
 ///   (bdf_options::coefficient_change);
 ///   a kept one has its corrections scaled by 2 / (1 + c / c_J) (IDA); a step
-///   that failed with a kept Jacobian is retried at once with a fresh one.
+///   that failed with a kept Jacobian is retried at once with a fresh one;
+/// - with index-3 constraints in the stabilised index-2 form
+///   (index2_stabilisation) the displacements move by (dv + d) / c, d the
+///   shift, and the first evaluation of every attempt assembles the Jacobian
+///   for G (the factorisation is still kept).
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -28,6 +33,7 @@
 
 #include "pradis/assembly/assembler.hpp"
 #include "pradis/core/error.hpp"
+#include "pradis/integrators/bdf/constraints.hpp"
 #include "pradis/integrators/bdf/history.hpp"
 #include "pradis/integrators/options.hpp"
 
@@ -40,17 +46,44 @@ struct newton_memory {
   double ss = 20;      ///< rate / (1 - rate) for the first correction of a step
 };
 
-/// Sets the free DOFs of s from their velocities: u = u_p + (v - u'_p) / c,
-/// a = v'_p + c (v - v_p); y_p, yp_p stack (u, v) of the ne equations.
+/// Sets the free DOFs of s from their velocities: u = u_p + (v + sh - u'_p) / c,
+/// a = v'_p + c (v - v_p); y_p, yp_p stack (u, v) of the ne equations; sh the
+/// shift of the stabilised constraints (index2_stabilisation), or none.
 template <class Assembler>
 void complete_state(const Assembler& as, global_state& s, const Eigen::VectorXd& y_p, const Eigen::VectorXd& yp_p,
-                    double c) {
+                    double c, const index2_stabilisation* st = nullptr) {
   const int ne = as.equations();
   for (int i = 0; i < ne; ++i) {
     const auto d = as.dof_of(i);
     const double v = s.v(d);
-    s.u(d) = y_p(i) + (v - yp_p(i)) / c;
+    const double sh = st ? st->shift[static_cast<std::size_t>(i)] : 0.0;
+    s.u(d) = y_p(i) + (v + sh - yp_p(i)) / c;
     s.a(d) = yp_p(ne + i) + c * (v - y_p(ne + i));
+  }
+}
+
+/// The stabilised constraints' part of one Newton iteration (see
+/// index2_stabilisation): with `fresh_g` G is taken from the values just
+/// assembled (at coefficient c); the constraint rows of `rhs` (holding -F) get
+/// -G v / c_J, and st.rhs the right-hand side of the shift.
+template <class Assembler>
+void stabilised_rows(const Assembler& as, const global_state& s, index2_stabilisation& st, bool fresh_g, double c,
+                     double c_jac, std::vector<double>& rhs) {
+  const auto& pat = as.pattern();
+  const auto vals = as.values();
+  std::fill(st.rhs.begin(), st.rhs.end(), 0.0);
+  for (const int r : st.rows) {
+    const auto b = static_cast<std::size_t>(pat.row_ptr[static_cast<std::size_t>(r)]);
+    const auto e = static_cast<std::size_t>(pat.row_ptr[static_cast<std::size_t>(r) + 1]);
+    double gv = 0;
+    for (std::size_t q = b; q < e; ++q) {
+      const auto col = static_cast<std::size_t>(pat.col[q]);
+      if (fresh_g) st.g[q] = st.multiplier[col] ? 0.0 : c * vals[q];
+      gv += st.g[q] * s.v(as.dof_of(static_cast<int>(col)));
+    }
+    const double gr = as.residual()(as.dof_of(r));
+    rhs[static_cast<std::size_t>(r)] = -gv / c_jac;
+    st.rhs[static_cast<std::size_t>(r)] = (gv - c * gr) / c_jac;
   }
 }
 
@@ -62,7 +95,7 @@ template <class Assembler, class Solver, class Evaluate>
 bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::VectorXd& y_p, const Eigen::VectorXd& yp_p,
              double c, double c_last, const Eigen::VectorXd& w, const newton_options& nw, double eps,
              double window, newton_memory& mem, std::vector<double>& rhs, Eigen::VectorXd& dy, run_statistics& stats,
-             std::optional<error>& failure, Evaluate&& evaluate) {
+             std::optional<error>& failure, index2_stabilisation* st, Evaluate&& evaluate) {
   const int ne = as.equations();
   const jacobian_coefficients jc{1 / c, 1, c};
   bool refresh = !mem.valid;
@@ -76,12 +109,14 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
   for (;;) {
     const bool fresh = refresh;
     for (int i = 0; i < ne; ++i) s.v(as.dof_of(i)) = y_p(ne + i);
-    complete_state(as, s, y_p, yp_p, c);
+    if (st) std::fill(st->shift.begin(), st->shift.end(), 0.0);
+    complete_state(as, s, y_p, yp_p, c, st);
     double oldnrm = 0;
     bool converged = false;
     try {
       for (int m = 0; m < nw.itr && !converged; ++m) {
-        evaluate(jc, refresh, m);
+        const bool fresh_g = st && m == 0;  // G at the predictor
+        evaluate(jc, refresh || fresh_g, m);
         if (refresh) {
           mem.valid = false;
           solver.factorize(as.values());
@@ -92,19 +127,28 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
           refresh = false;
         }
         for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
+        if (st) {
+          stabilised_rows(as, s, *st, fresh_g, c, mem.c_jac, rhs);
+          solver.solve(st->rhs);
+        }
         solver.solve(rhs);
         ++stats.newton_iterations;
         const double scale = c == mem.c_jac ? 1.0 : 2 / (1 + c / mem.c_jac);
         bool finite = true;
         for (int i = 0; i < ne; ++i) {
           const double dv = scale * rhs[static_cast<std::size_t>(i)];
-          finite = finite && std::isfinite(dv);
+          double dsh = 0;
+          if (st && !st->multiplier[static_cast<std::size_t>(i)]) {
+            dsh = st->rhs[static_cast<std::size_t>(i)];
+            st->shift[static_cast<std::size_t>(i)] += dsh;
+          }
+          finite = finite && std::isfinite(dv) && std::isfinite(dsh);
           s.v(as.dof_of(i)) += dv;
-          dy(i) = dv / c;
+          dy(i) = (dv + dsh) / c;
           dy(ne + i) = dv;
         }
         if (!finite) break;
-        complete_state(as, s, y_p, yp_p, c);
+        complete_state(as, s, y_p, yp_p, c, st);
         const double delnrm = wrms(dy, w);
         if (m == 0) {
           oldnrm = delnrm;

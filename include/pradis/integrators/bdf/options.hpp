@@ -48,6 +48,15 @@ struct bdf_options {
   /// well; the measurements against IDA are in docs/bdf.md ("Newton"). x >= 1
   /// refreshes only on a Newton failure.
   double coefficient_change = 0;
+  /// Index-3 constraints (exact joints: LINKX, SPH3X, REV3X, ...) in the
+  /// stabilised index-2 form of Gear, Gupta and Leimkuhler: the velocity
+  /// constraint G v = 0 is met with the position constraint, and the velocities
+  /// are tested against DRLTX like every other velocity (docs/bdf.md,
+  /// "Index-3 constraints"). false: the plain index-3 form, with the velocities
+  /// of the constrained DOFs tested against tolerances divided by the step. The
+  /// driver uses the index-3 form anyway when a constraint moves with a driven
+  /// DOF (a kinematic source), and says so in its log.
+  bool stabilised_index2 = true;
 };
 
 /// Checks bdf_options; returns the message of the first invalid one (the
