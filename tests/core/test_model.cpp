@@ -6,7 +6,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <span>
 #include <sstream>
+#include <vector>
 
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/simulation.hpp"
@@ -150,4 +152,46 @@ TEST_SUITE("core/model") {
       CHECK(std::string(e.what()).find("DOF 7 does not exist") != std::string::npos);
     }
   }
+}
+
+TEST_CASE("a partial Jacobian (call_info::jacobian_types) assembles the listed element types only") {
+  // Two masses joined by a spring, the second on a damper to the ground: with
+  // J = cu K + cv C + ca M the full values are the sum of each type's part; asking
+  // for the spring's type alone gives cu k [1 -1; -1 1] and nothing of the masses
+  // or the damper. The flows are those of all types either way.
+  using M = model<point_mass, linear_spring, linear_damper>;
+  M m;
+  const dof a = m.add_dof("a"), b = m.add_dof("b");
+  m.add<point_mass>("ma", {2.0}, a);
+  m.add<point_mass>("mb", {3.0}, b);
+  m.add<linear_spring>("k", {5.0}, a, b);
+  m.add<linear_damper>("c", {7.0}, b, m.ground());
+  std::vector<char> prescribed(static_cast<std::size_t>(m.dof_count()), 0);
+  prescribed[0] = 1;
+  assembler<M> as;
+  as.build(m, prescribed);
+  global_state s;
+  s.resize(m.dof_count());
+  s.u(a.index) = 0.1;
+  s.v(b.index) = 0.2;
+  const jacobian_coefficients c{0.5, 1.0, 4.0};
+  as.evaluate(m, s, c, call_info{0.0, 1e-3, 1, 0, true, nullptr});
+  const std::vector<double> full(as.values().begin(), as.values().end());
+  const Eigen::VectorXd flows = as.residual();
+  const std::vector<char> spring_only{0, 1, 0};  // model<point_mass, linear_spring, linear_damper>
+  call_info partial{0.0, 1e-3, 1, 0, false, nullptr};
+  partial.jacobian_types = &spring_only;
+  as.evaluate(m, s, c, partial);
+  const auto& pat = as.pattern();
+  auto value = [&](std::span<const double> v, dof r, dof col) {
+    const int ra = as.equation_of(r.index), ca = as.equation_of(col.index);
+    return v[static_cast<std::size_t>(pat.find(ra, ca))];
+  };
+  CHECK(value(as.values(), a, a) == doctest::Approx(0.5 * 5.0));
+  CHECK(value(as.values(), a, b) == doctest::Approx(-0.5 * 5.0));
+  CHECK(value(as.values(), b, b) == doctest::Approx(0.5 * 5.0));
+  CHECK(value(full, a, a) == doctest::Approx(0.5 * 5.0 + 4.0 * 2.0));
+  CHECK(value(full, b, b) == doctest::Approx(0.5 * 5.0 + 7.0 + 4.0 * 3.0));
+  CHECK(as.residual()(a.index) == flows(a.index));
+  CHECK(as.residual()(b.index) == flows(b.index));
 }

@@ -53,6 +53,10 @@ struct call_info {
   bool want_jacobian = true;
   diagnostics* log = nullptr;
   double dabsi = 0.1;  ///< DABSI of the run: sets Mu of the rotational nodes' norm equation (spatial::norm_viscosity)
+  /// Without want_jacobian: per element type (in the model's order), the types whose Jacobians are
+  /// assembled into values() anyway, the others left out (a partial Jacobian: complete only on the rows
+  /// that no other type touches, e.g. the constraint row of a multiplier). Null: none.
+  const std::vector<char>* jacobian_types = nullptr;
 };
 
 template <class Model>
@@ -143,13 +147,14 @@ class assembler<model<Es...>> {
 
   /// Evaluates every element at the global state `s`: sums the flows into the
   /// residual (all DOFs) and |flows| into abs_sum (for DRLTI), and, if
-  /// info.want_jacobian, assembles J = cu K + cv C + ca M into values().
+  /// info.want_jacobian, assembles J = cu K + cv C + ca M into values() (with
+  /// info.jacobian_types instead, the part of J from those element types).
   /// Never allocates. Element errors propagate as pradis::error; a non-finite
   /// flow or Jacobian entry raises error_code::non_finite naming the instance.
   void evaluate(model_type& m, const global_state& s, const jacobian_coefficients& c, const call_info& info) {
     residual_.setZero();
     abs_sum_.setZero();
-    if (info.want_jacobian) std::fill(values_.begin(), values_.end(), 0.0);
+    if (info.want_jacobian || info.jacobian_types) std::fill(values_.begin(), values_.end(), 0.0);
     element_context ctx;
     ctx.set_diagnostics(info.log);
     ctx.time = info.time;
@@ -222,7 +227,7 @@ class assembler<model<Es...>> {
 
   template <class E>
   void evaluate_type(model_type& m, const global_state& s, const jacobian_coefficients& c, const call_info& info,
-                     element_context& ctx, const scatter_map<E>& map, std::size_t) {
+                     element_context& ctx, const scatter_map<E>& map, std::size_t type_index) {
     using tr = element_traits<E>;
     constexpr int n = tr::n;
     auto& vec = m.template instances<E>();
@@ -230,7 +235,9 @@ class assembler<model<Es...>> {
     local_input<E> li;
     local_output<E> out;
     li.t = info.time;
-    out.want_jacobian = info.want_jacobian;
+    const bool jac = info.want_jacobian || (info.jacobian_types && type_index < info.jacobian_types->size() &&
+                                            (*info.jacobian_types)[type_index]);
+    out.want_jacobian = jac;
     for (std::size_t i = 0; i < vec.size(); ++i) {
       auto& in = vec[i];
       gather(in, s, li);
@@ -244,7 +251,7 @@ class assembler<model<Es...>> {
         residual_(d) += out.f(k);
         abs_sum_(d) += std::abs(out.f(k));
       }
-      if (!info.want_jacobian) continue;
+      if (!jac) continue;
       if constexpr (tr::has_k)
         if (!out.K.allFinite()) ctx.fail(error_code::non_finite, "a Jacobian entry dF/du is NaN or infinite");
       if constexpr (tr::has_c)

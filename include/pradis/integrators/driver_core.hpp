@@ -68,8 +68,9 @@ class driver_core {
   }
   /// Evaluates the model. During step k (1-based) elements see NSTEP = k; at
   /// the zero step and between steps they see the number of accepted steps.
-  void evaluate(const jacobian_coefficients& c, double h, bool jac, int niter = 0, bool in_step = false) {
-    call_info info{t_, h, stats_.steps + (in_step ? 1 : 0), niter, jac, &log_, opt_.newton.dabsi};
+  void evaluate(const jacobian_coefficients& c, double h, bool jac, int niter = 0, bool in_step = false,
+                const std::vector<char>* jacobian_types = nullptr) {
+    call_info info{t_, h, stats_.steps + (in_step ? 1 : 0), niter, jac, &log_, opt_.newton.dabsi, jacobian_types};
     ++stats_.evaluations;
     if (jac) ++stats_.jacobian_evaluations;
     asm_.evaluate(m_, s_, c, info);

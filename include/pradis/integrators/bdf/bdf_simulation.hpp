@@ -318,6 +318,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     bdf_detail::mark_constraints(
         asm_, index3_, bopt_.stabilised_index2 && !bdf_detail::driven_constraint(m_, index3_, prescribed_), index2_,
         stab_);
+    constraint_types_ = bdf_detail::constraint_types(m_, index3_);
     double h = opt_.smin;
     set_weights(opt_.error_control ? 0.001 * (opt_.end - t_) : h);
     if (opt_.error_control) {
@@ -349,7 +350,9 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     const bool ok = bdf_detail::correct(
         asm_, solver_, s_, y_p_, yp_p_, c, hist_.c_last(), w_, opt_.newton, bopt_.newton_tolerance,
         bopt_.coefficient_change, mem, rhs_, dy_, stats_, last_failure_, stab_.rows.empty() ? nullptr : &stab_,
-        [&](const jacobian_coefficients& jc, bool jac, int k) { evaluate(jc, h, jac, k, true); });
+        [&](const jacobian_coefficients& jc, bool jac, bool rows, int k) {
+          evaluate(jc, h, jac, k, true, rows ? &constraint_types_ : nullptr);
+        });
     jac_valid_ = mem.valid;
     c_jac_ = mem.c_jac;
     ss_ = mem.ss;
@@ -454,6 +457,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   double ss_ = 20;    // IDA's rate / (1 - rate) estimate for the first Newton correction
   std::vector<char> index2_;  // by equation: a DOF of an index-3 constraint's row (mark_constraints)
   bdf_detail::index2_stabilisation stab_;  // the stabilised index-2 form (empty: none, or the plain index-3 form)
+  std::vector<char> constraint_types_;     // per element type: owns an index-3 multiplier (bdf_detail::constraint_types)
   int nef_ = 0, ncf_ = 0;
   bool jac_valid_ = false;
 };

@@ -96,4 +96,20 @@ std::optional<std::pair<std::string, std::string>> driven_constraint(Model& m, c
   return found;
 }
 
+/// Per element type (in the model's order): whether an instance of it owns an
+/// index-3 multiplier. The stabilised form assembles these types' Jacobians at
+/// each attempt's start for G (call_info::jacobian_types), not the whole model's.
+template <class Model>
+std::vector<char> constraint_types(Model& m, const std::vector<char>& index3) {
+  std::vector<char> types;
+  m.for_each_instances([&](auto& vec) {
+    bool owns = false;
+    for (auto& in : vec)
+      for (const auto d : in.dofs)
+        owns = owns || (static_cast<std::size_t>(d) < index3.size() && index3[static_cast<std::size_t>(d)]);
+    types.push_back(owns ? 1 : 0);
+  });
+  return types;
+}
+
 }  // namespace pradis::bdf_detail

@@ -21,8 +21,8 @@
 ///   that failed with a kept Jacobian is retried at once with a fresh one;
 /// - with index-3 constraints in the stabilised index-2 form
 ///   (index2_stabilisation) the displacements move by (dv + d) / c, d the
-///   shift, and the first evaluation of every attempt assembles the Jacobian
-///   for G (the factorisation is still kept).
+///   shift, and the first evaluation of every attempt assembles the Jacobians
+///   of the constraint elements for G (the factorisation is still kept).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -89,7 +89,9 @@ void stabilised_rows(const Assembler& as, const global_state& s, index2_stabilis
 
 /// Newton on one step from the predictor (the velocities of s are set to v_p
 /// here). Returns whether it converged. `evaluate(coefficients, want_jacobian,
-/// iteration)` evaluates the model at s into `as`. `failure` receives a
+/// constraint_jacobian, iteration)` evaluates the model at s into `as`; with
+/// constraint_jacobian (and not want_jacobian) it assembles the Jacobians of
+/// the element types that own index-3 multipliers only, enough for G. `failure` receives a
 /// singular matrix or situation that ended the last attempt.
 template <class Assembler, class Solver, class Evaluate>
 bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::VectorXd& y_p, const Eigen::VectorXd& yp_p,
@@ -116,7 +118,7 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
     try {
       for (int m = 0; m < nw.itr && !converged; ++m) {
         const bool fresh_g = st && m == 0;  // G at the predictor
-        evaluate(jc, refresh || fresh_g, m);
+        evaluate(jc, refresh, fresh_g && !refresh, m);
         if (refresh) {
           mem.valid = false;
           solver.factorize(as.values());
