@@ -89,6 +89,17 @@ struct breaks_at {
 
 constexpr double osc_w = 2 * std::numbers::pi;  // m = 1, k = w^2: period 1
 
+/// The oscillator u'' + w^2 u = 0, u(0) = 1, v(0) = 0 (m = 1, k = w^2: period 1).
+struct oscillator {
+  model<point_mass, linear_spring, initial_displacement> m;
+  dof x;
+  oscillator() : x(m.add_dof("x")) {
+    m.add<point_mass>("m", {1.0}, x);
+    m.add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
+    m.add<initial_displacement>("x0", {1.0}, x);
+  }
+};
+
 /// Error of the oscillator u'' + w^2 u = 0, u(0) = 1, v(0) = 0 at `end` under the BDF
 /// driver: max(|u - cos w t|, |v + w sin w t| / w).
 struct oscillator_run {
@@ -97,11 +108,9 @@ struct oscillator_run {
   int order = 0;
 };
 oscillator_run run_oscillator(const bdf_options& bo, const run_options& o) {
-  model<point_mass, linear_spring, initial_displacement> m;
-  const dof x = m.add_dof("x");
-  m.add<point_mass>("m", {1.0}, x);
-  m.add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
-  m.add<initial_displacement>("x0", {1.0}, x);
+  oscillator osc;
+  auto& m = osc.m;
+  const dof x = osc.x;
   bdf_simulation sim(m, bo);
   oscillator_run r;
   r.stats = sim.run(o);
@@ -204,11 +213,9 @@ TEST_SUITE("integrators/bdf") {
   }
 
   TEST_CASE("outputs at OUT and a second stage continue the exact oscillator") {
-    model<point_mass, linear_spring, initial_displacement> m;
-    const dof x = m.add_dof("x");
-    m.add<point_mass>("m", {1.0}, x);
-    m.add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
-    m.add<initial_displacement>("x0", {1.0}, x);
+    oscillator osc;
+    auto& m = osc.m;
+    const dof x = osc.x;
     bdf_simulation sim(m);
     std::vector<double> times;
     double worst = 0;
@@ -481,15 +488,10 @@ TEST_SUITE("integrators/bdf") {
     // the oscillator), with CONTROL = 0.05 instead of SMIN: the run reaches END, every
     // step but the last (clipped at END) is at least CONTROL, and so the error is far
     // above the tolerance (pradis::simulation's CONTROL has the same meaning).
-    model<point_mass, linear_spring, initial_displacement> m;
-    const dof x = m.add_dof("x");
-    m.add<point_mass>("m", {1.0}, x);
-    m.add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
-    m.add<initial_displacement>("x0", {1.0}, x);
-    bdf_simulation sim(m);
-    std::vector<double> steps;
-    double t_last = 0;
-    sim.on_step([&](const auto& s) {
+    oscillator osc;
+    bdf_simulation sim(osc.m);
+    std::vector<double> steps;  // the accepted steps
+    sim.on_step([&, t_last = 0.0](const auto& s) mutable {
       steps.push_back(s.time() - t_last);
       t_last = s.time();
     });
@@ -502,16 +504,16 @@ TEST_SUITE("integrators/bdf") {
     CHECK(steps.size() <= 21);  // END / CONTROL + the clipped last step
     for (std::size_t i = 0; i + 1 < steps.size(); ++i) CHECK(steps[i] >= 0.05 * (1 - 1e-12));
     // (A step above CONTROL may still fail the test; it is then redone at CONTROL.)
-    const double err = std::abs(sim.u(x) - std::cos(osc_w * sim.time()));
+    const double err = std::abs(sim.u(osc.x) - std::cos(osc_w * sim.time()));
     CAPTURE(err);
     CHECK(err > 1e-6);  // the tolerance was not met: CONTROL overrode it
     // The same run without CONTROL meets the tolerance with many more steps.
-    bdf_simulation free_run(m);
+    bdf_simulation free_run(osc.m);
     const run_statistics sf = free_run.run(controlled(1.0, 1e-10, 0.1));
     MESSAGE("CONTROL 0.05: " << st.steps << " steps, error " << err << "; without: " << sf.steps << " steps, error "
-                             << std::abs(free_run.u(x) - std::cos(osc_w * free_run.time())));
+                             << std::abs(free_run.u(osc.x) - std::cos(osc_w * free_run.time())));
     CHECK(sf.steps > 5 * st.steps);
-    CHECK(std::abs(free_run.u(x) - std::cos(osc_w * free_run.time())) < 1e-6);
+    CHECK(std::abs(free_run.u(osc.x) - std::cos(osc_w * free_run.time())) < 1e-6);
   }
 
   TEST_CASE("PREDICT does not apply to BDF: invalid_option") {
@@ -529,12 +531,8 @@ TEST_SUITE("integrators/bdf") {
   }
 
   TEST_CASE("SMIN that cannot reach the tolerance fails with step_too_small naming the DOF") {
-    model<point_mass, linear_spring, initial_displacement> m;
-    const dof x = m.add_dof("x");
-    m.add<point_mass>("m", {1.0}, x);
-    m.add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
-    m.add<initial_displacement>("x0", {1.0}, x);
-    bdf_simulation sim(m);
+    oscillator osc;
+    bdf_simulation sim(osc.m);
     run_options o = controlled(1.0, 1e-10, 0.1);
     o.smin = 0.05;
     try {
