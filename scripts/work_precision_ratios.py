@@ -15,7 +15,8 @@ Usage: scripts/work_precision_ratios.py [CSV] [--peer IDA] [--from 1e-3] [--to 1
 the CSV, e.g. IDA; Simbody/RKM and Simbody/CPodes select one of Simbody's two
 integrators, which only the top, topx and chain problems have);
 --method NAME: pradis's series of that method only (e.g. BDF: the error-controlled BDF driver);
---skip-method NAME: all of pradis's series but those of that method.
+--skip-method NAME: all of pradis's series but those of that method and its variants
+(NAME-...: --skip-method BDF also leaves out BDF-index3, the BDF driver's plain index-3 form).
 Prints, per problem, the ratio at each decade, the median ratio over 13 errors
 log-spaced from --from to --to, and which pradis series is best at each decade.
 """
@@ -88,7 +89,8 @@ def main(argv):
 
         def best_pradis(e):
             cands = [(cost(fr, e), k[1]) for k, fr in fronts.items()
-                     if k[0] == "pradis" and (method is None or k[1] == method) and k[1] != skip]
+                     if k[0] == "pradis" and (method is None or k[1] == method)
+                     and not (skip is not None and (k[1] == skip or k[1].startswith(skip + "-")))]
             cands = [c for c in cands if c[0] is not None]
             return min(cands) if cands else (None, None)
 
