@@ -10,7 +10,8 @@
 ///   ss = rate / (1 - rate), rate = (|dy_m| / |dy_0|)^(1/m) from the
 ///   corrections of this step (for the first correction: the last rate of the
 ///   previous step, 20 after a new factorisation, 100 after c changed), or at
-///   once when the first correction is below 1e-4 eps;
+///   once when the first correction is below 1e-4 eps; the kept rate falls by
+///   at most rate_decay per measured correction (kept_rate_ss, as CVODE);
 /// - it fails when the rate exceeds newton_options::max_rate, on a non-finite
 ///   correction, a singular matrix or situation, or after newton_options::itr
 ///   corrections;
@@ -45,6 +46,22 @@ struct newton_memory {
   double c_jac = 0;    ///< the c it was made with
   double ss = 20;      ///< rate / (1 - rate) for the first correction of a step
 };
+
+/// The fastest the kept convergence rate may fall per measured correction
+/// (CVODE's CRDOWN).
+inline constexpr double rate_decay = 0.3;
+
+/// ss = rate / (1 - rate) kept for the convergence test, from the rate measured
+/// in this step and the kept ss_old: rate = max(measured, rate_decay rate_old).
+/// The floor keeps one fast contraction, measured just after a factorisation,
+/// from standing for the Jacobian in later steps, where it has aged: a step
+/// would then pass on its first correction however large that correction is,
+/// and the unconverged solutions would feed the history (with a kept Jacobian
+/// on the free body this grew the first corrections by 2.5 times per step).
+inline double kept_rate_ss(double measured, double ss_old) {
+  const double rate = std::max(measured, rate_decay * ss_old / (1 + ss_old));
+  return rate / (1 - rate);
+}
 
 /// Sets the free DOFs of s from their velocities: u = u_p + (v + sh - u'_p) / c,
 /// a = v'_p + c (v - v_p); y_p, yp_p stack (u, v) of the ne equations; sh the
@@ -156,9 +173,9 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
           oldnrm = delnrm;
           if (delnrm <= 1e-4 * eps) converged = true;
         } else {
-          const double rate = std::pow(delnrm / oldnrm, 1.0 / m);
-          if (!(rate <= nw.max_rate)) break;
-          mem.ss = rate / (1 - rate);
+          const double measured = std::pow(delnrm / oldnrm, 1.0 / m);
+          if (!(measured <= nw.max_rate)) break;
+          mem.ss = kept_rate_ss(measured, mem.ss);
         }
         if (mem.ss * delnrm <= eps) converged = true;
       }
