@@ -498,6 +498,8 @@ TEST_SUITE("integrators/bdf") {
     refused({.coefficient_change = -0.1}, "the Jacobian coefficient change -0.1 must be a finite number >= 0");
     refused({.coefficient_change = std::numeric_limits<double>::infinity()},
             "the Jacobian coefficient change inf must be a finite number >= 0");
+    refused({.lq_renormalise = -1}, "the quaternion norm band lq_renormalise = -1 must be a number >= 0");
+    refused({.lq_renormalise = std::numeric_limits<double>::quiet_NaN()}, "lq_renormalise = nan must be a number >= 0");
     bdf_simulation sim(m);
     run_options o = controlled(1.0, 1e-3, 0.1);
     o.drltx = 0;

@@ -26,7 +26,8 @@
 /// element's recommended step (unless IGNORE) and ends exactly at every output
 /// time (OUT) and at END. CONTROL (run_options::control): no step below it is
 /// chosen for accuracy, and a step at or below it passes the error test;
-/// PREDICT does not apply (invalid_option).
+/// PREDICT does not apply (invalid_option). A rotational node whose quaternion
+/// norm drifted is scaled back to Lq = 1 with its history (rotations.hpp).
 ///
 /// Newton (IDA's): modified Newton with the Jacobian and its factorisation kept
 /// across iterations and steps; the iteration converges when
@@ -55,6 +56,7 @@
 #include "pradis/integrators/bdf/corrector.hpp"
 #include "pradis/integrators/bdf/history.hpp"
 #include "pradis/integrators/bdf/options.hpp"
+#include "pradis/integrators/bdf/rotations.hpp"
 #include "pradis/integrators/checkpoint.hpp"
 #include "pradis/integrators/concepts.hpp"
 #include "pradis/integrators/driver_core.hpp"
@@ -410,6 +412,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     // evaluation was at the iterate before the last correction).
     if (!m_.new_state_pool().empty()) evaluate({0, 0, 0}, h, false, 0, true);
     hist_.complete(e_, w_, bopt_.max_order, bopt_.fixed_order, opt_.error_control, opt_.smax);
+    if (bdf_detail::renormalise_rotation_nodes(m_.rotation_nodes(), asm_, s_, hist_, bopt_.lq_renormalise) > 0) jac_valid_ = false;
     if (opt_.error_control && hist_.step() < opt_.control) hist_.set_step(std::min(opt_.control, opt_.smax));
     if (!opt_.error_control) {
       // The start without error control: the step grows from SMIN to SMAX by a

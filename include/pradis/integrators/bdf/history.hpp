@@ -126,6 +126,11 @@ class history {
     }
   }
 
+  /// Scales row r of the history (component r of y and of its differences) by f:
+  /// the history of the motion with that component scaled, for a model invariant
+  /// under the scaling (rotations.hpp).
+  void scale_row(int r, double f) { phi_.row(r) *= f; }
+
   /// Undoes set_coefficients() after a failed or rejected attempt (IDARestore).
   void restore() {
     for (int j = 1; j <= k_; ++j) psi_[j - 1] = psi_[j] - h_;

@@ -57,6 +57,12 @@ struct bdf_options {
   /// driver uses the index-3 form anyway when a constraint moves with a driven
   /// DOF (a kinematic source), and says so in its log.
   bool stabilised_index2 = true;
+  /// After every accepted step, a rotational node whose quaternion norm Lq left
+  /// [1 - x, 1 + x], x = this value, is scaled back to Lq = 1 with its history;
+  /// exact, since the rotational formulas are scale invariant (docs/bdf.md,
+  /// "Rotational nodes"). 0 renormalises at every step; at or above 0.1 (the
+  /// drift that is code 75) never.
+  double lq_renormalise = 0.01;
 };
 
 /// Checks bdf_options; returns the message of the first invalid one (the
@@ -72,6 +78,8 @@ inline std::optional<std::string> check_bdf_options(const bdf_options& o) {
     return "the initial step " + num(o.initial_step) + " must be a finite number >= 0";
   if (!(o.coefficient_change >= 0) || o.coefficient_change == std::numeric_limits<double>::infinity())
     return "the Jacobian coefficient change " + num(o.coefficient_change) + " must be a finite number >= 0";
+  if (!(o.lq_renormalise >= 0))
+    return "the quaternion norm band lq_renormalise = " + num(o.lq_renormalise) + " must be a number >= 0";
   return std::nullopt;
 }
 
