@@ -412,7 +412,8 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     // evaluation was at the iterate before the last correction).
     if (!m_.new_state_pool().empty()) evaluate({0, 0, 0}, h, false, 0, true);
     hist_.complete(e_, w_, bopt_.max_order, bopt_.fixed_order, opt_.error_control, opt_.smax);
-    if (bdf_detail::renormalise_rotation_nodes(m_.rotation_nodes(), asm_, s_, hist_, bopt_.lq_renormalise) > 0) jac_valid_ = false;
+    if (bdf_detail::renormalise_rotation_nodes(m_.rotation_nodes(), asm_, s_, hist_, bopt_.lq_renormalise) > 0)
+      jac_valid_ = false;  // dF/dq scales with the node
     if (opt_.error_control && hist_.step() < opt_.control) hist_.set_step(std::min(opt_.control, opt_.smax));
     if (!opt_.error_control) {
       // The start without error control: the step grows from SMIN to SMAX by a
