@@ -79,7 +79,10 @@ struct bad_spring {
     if (bad && mode == 0) out.f(0) = std::numeric_limits<double>::quiet_NaN();
     if (bad && mode == 1) out.f(0) = std::numeric_limits<double>::infinity();
     if (bad && mode == 3) ctx.singular("the test spring reached its singular state");
-    if (out.want_jacobian) out.K(0, 0) = bad && mode == 2 ? std::numeric_limits<double>::quiet_NaN() : 10.0;
+    if (out.want_jacobian)
+      out.K(0, 0) = bad && mode == 2   ? std::numeric_limits<double>::quiet_NaN()
+                    : bad && mode == 4 ? std::numeric_limits<double>::infinity()
+                                       : 10.0;
   }
 };
 
@@ -365,7 +368,8 @@ TEST_CASE("a NaN or infinite flow or Jacobian entry: code 150 naming the instanc
   // t_bad = 0: at the zero step; 0.05: during a step (not treated as a failed step).
   for (const case_t c : {case_t{0, 0.0, "a flow is NaN or infinite"}, case_t{0, 0.05, "a flow is NaN or infinite"},
                          case_t{1, 0.05, "a flow is NaN or infinite"},
-                         case_t{2, 0.05, "a Jacobian entry dF/du is NaN or infinite"}}) {
+                         case_t{2, 0.05, "a Jacobian entry dF/du is NaN or infinite"},
+                         case_t{4, 0.05, "a Jacobian entry dF/du is NaN or infinite"}}) {
     CAPTURE(c.mode);
     CAPTURE(c.t_bad);
     bad_model m;

@@ -9,6 +9,7 @@
 #include <numeric>
 #include <random>
 #include <set>
+#include <sstream>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -395,6 +396,47 @@ TEST_SUITE("linalg") {
     }
   }
 
+  TEST_CASE("solve(b1, b2) gives the results of two solve() calls bit for bit and checks both right-hand sides") {
+    // One pass over the factor for two right-hand sides (the BDF driver's shift and
+    // correction): the same operations per vector in the same order, so the same bits.
+    for (const int n : {1, 10, 200}) {
+      const auto m = random_matrix(n, n <= 10 ? 0.4 : 0.02, 31u + static_cast<unsigned>(n), false);
+      CAPTURE(n);
+      sparse_lu<> lu;
+      lu.analyze(m.pattern);
+      lu.factorize(m.values);
+      std::mt19937 rng(7u);
+      std::uniform_real_distribution<double> u(-1, 1);
+      std::vector<double> b1(static_cast<std::size_t>(n)), b2(static_cast<std::size_t>(n));
+      for (int i = 0; i < n; ++i) b1[static_cast<std::size_t>(i)] = u(rng), b2[static_cast<std::size_t>(i)] = u(rng);
+      std::vector<double> x1 = b1, x2 = b2, y1 = b1, y2 = b2;
+      lu.solve(x1);
+      lu.solve(x2);
+      const long solves = lu.statistics().solves;
+      lu.solve(std::span<double>(y1), std::span<double>(y2));
+      CHECK(lu.statistics().solves == solves + 2);
+      CHECK(y1 == x1);
+      CHECK(y2 == x2);
+      if (n == 200) {
+        y1 = b1;
+        y2 = b2;
+        y2[17] = std::numeric_limits<double>::quiet_NaN();
+        try {
+          lu.solve(std::span<double>(y1), std::span<double>(y2));
+          FAIL("solve did not throw");
+        } catch (const error& ex) {
+          CHECK(ex.code() == error_code::non_finite);
+          CHECK(ex.dof() == 17);
+        }
+        std::vector<double> short_b(10);
+        CHECK_THROWS_AS(lu.solve(std::span<double>(y1), std::span<double>(short_b)), std::invalid_argument);
+      }
+    }
+    sparse_lu<> unfactorised;
+    std::vector<double> b1(3), b2(3);
+    CHECK_THROWS_AS(unfactorised.solve(std::span<double>(b1), std::span<double>(b2)), std::logic_error);
+  }
+
   TEST_CASE("two identical rows are reported as a singular matrix naming one of those rows") {
     // Dense 6x6, diagonally dominant except that row 4 is a copy of row 1.
     entries_t e;
@@ -486,6 +528,23 @@ TEST_SUITE("linalg") {
     md.factorize(m.values);
     CHECK(md.statistics().factorizations == 1);
     CHECK(md.statistics().last_factor_seconds >= 0);
+    // Solves are timed only on request (time_solves); the report says so.
+    std::vector<double> b(200, 1.0);
+    md.solve(b);
+    CHECK(md.statistics().solves == 1);
+    CHECK(md.statistics().last_solve_seconds == 0);
+    std::ostringstream untimed;
+    md.statistics().print(untimed);
+    CHECK(untimed.str().find("last solve not timed") != std::string::npos);
+    md.time_solves = true;
+    for (int k = 0; k < 1000 && md.statistics().last_solve_seconds == 0; ++k) {
+      std::fill(b.begin(), b.end(), 1.0);
+      md.solve(b);
+    }
+    CHECK(md.statistics().last_solve_seconds > 0);
+    std::ostringstream timed;
+    md.statistics().print(timed);
+    CHECK(timed.str().find("last solve 0.") != std::string::npos);
   }
 
   TEST_CASE("an empty 0x0 matrix analyses, factorises and solves trivially") {

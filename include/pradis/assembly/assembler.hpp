@@ -114,7 +114,9 @@ class assembler<model<Es...>> {
         if (er >= 0 && ec >= 0) node_slots_[i * 4 + c] = pattern_.find(er, ec);
       }
     }
-    // Scatter maps: slot of every local entry (r, c), or -1 where row or column has no equation.
+    // Scatter maps: per instance, the local entries (r, c) whose row and column
+    // both have an equation, with their slots (entries on ground or prescribed
+    // DOFs are not listed, so numeric assembly does not visit them).
     std::apply(
         [&](auto&... maps) {
           (
@@ -122,16 +124,18 @@ class assembler<model<Es...>> {
                 using E = typename std::remove_cvref_t<decltype(map)>::element_type;
                 constexpr int n = element_traits<E>::n;
                 const auto& vec = m.template instances<E>();
-                map.slots.assign(vec.size() * static_cast<std::size_t>(n * n), -1);
-                for (std::size_t i = 0; i < vec.size(); ++i)
+                map.first.assign(vec.size() + 1, 0);
+                map.entries.clear();
+                for (std::size_t i = 0; i < vec.size(); ++i) {
                   for (int r = 0; r < n; ++r)
                     for (int c = 0; c < n; ++c) {
                       const int er = eq_of_dof_[static_cast<std::size_t>(vec[i].dofs[static_cast<std::size_t>(r)])];
                       const int ec = eq_of_dof_[static_cast<std::size_t>(vec[i].dofs[static_cast<std::size_t>(c)])];
                       if (er >= 0 && ec >= 0)
-                        map.slots[i * static_cast<std::size_t>(n * n) + static_cast<std::size_t>(r * n + c)] =
-                            pattern_.find(er, ec);
+                        map.entries.push_back({storage_index<E>(r, c), pattern_.find(er, ec)});
                     }
+                  map.first[i + 1] = static_cast<int>(map.entries.size());
+                }
               }(maps),
               ...);
         },
@@ -219,10 +223,23 @@ class assembler<model<Es...>> {
   }
 
  private:
+  /// Where the local Jacobian entry (r, c) lies in the storage of E's n x n blocks.
+  template <class E>
+  static constexpr int storage_index(int r, int c) {
+    constexpr int n = element_traits<E>::n;
+    return element_traits<E>::matrix::IsRowMajor ? r * n + c : c * n + r;
+  }
+  /// One local Jacobian entry of an instance that is assembled: its place in
+  /// the storage of the local blocks (storage_index) and its slot.
+  struct scatter_entry {
+    int local;
+    int slot;
+  };
   template <class E>
   struct scatter_map {
     using element_type = E;
-    std::vector<int> slots;
+    std::vector<int> first;                // instance i's entries: [first[i], first[i + 1])
+    std::vector<scatter_entry> entries;
   };
 
   template <class E>
@@ -243,7 +260,10 @@ class assembler<model<Es...>> {
       gather(in, s, li);
       ctx.set_identity(E::passport.name, in.name);
       bind(m, in, ctx);
-      out.clear();
+      if (jac)
+        out.clear();
+      else
+        out.f.setZero();  // the blocks are not read: an element may leave them as they are
       in.element.evaluate(li, out, ctx);
       if (!out.f.allFinite()) ctx.fail(error_code::non_finite, "a flow is NaN or infinite");
       for (int k = 0; k < n; ++k) {
@@ -252,23 +272,29 @@ class assembler<model<Es...>> {
         abs_sum_(d) += std::abs(out.f(k));
       }
       if (!jac) continue;
-      if constexpr (tr::has_k)
-        if (!out.K.allFinite()) ctx.fail(error_code::non_finite, "a Jacobian entry dF/du is NaN or infinite");
-      if constexpr (tr::has_c)
-        if (!out.C.allFinite()) ctx.fail(error_code::non_finite, "a Jacobian entry dF/dv is NaN or infinite");
-      if constexpr (tr::has_m)
-        if (!out.M.allFinite()) ctx.fail(error_code::non_finite, "a Jacobian entry dF/da is NaN or infinite");
-      const int* slot = map.slots.data() + i * static_cast<std::size_t>(n * n);
-      for (int r = 0; r < n; ++r)
-        for (int q = 0; q < n; ++q) {
-          const int sl = slot[r * n + q];
-          if (sl < 0) continue;
-          double x = 0;
-          if constexpr (tr::has_k) x += c.cu * out.K(r, q);
-          if constexpr (tr::has_c) x += c.cv * out.C(r, q);
-          if constexpr (tr::has_m) x += c.ca * out.M(r, q);
-          values_[static_cast<std::size_t>(sl)] += x;
-        }
+      // Only the entries assembled are checked: x is NaN or infinite if one of
+      // its terms is (0 * inf is NaN), and the block is named afterwards.
+      const scatter_entry* const b = map.entries.data() + map.first[i];
+      const scatter_entry* const e = map.entries.data() + map.first[i + 1];
+      double check = 0;
+      for (const scatter_entry* p = b; p != e; ++p) {
+        const auto j = static_cast<Eigen::Index>(p->local);
+        double x = 0;
+        if constexpr (tr::has_k) x += c.cu * out.K.data()[j];
+        if constexpr (tr::has_c) x += c.cv * out.C.data()[j];
+        if constexpr (tr::has_m) x += c.ca * out.M.data()[j];
+        check += x * 0.0;
+        values_[static_cast<std::size_t>(p->slot)] += x;
+      }
+      if (check != 0.0) {  // NaN: some entry was not finite
+        if constexpr (tr::has_k)
+          if (!out.K.allFinite()) ctx.fail(error_code::non_finite, "a Jacobian entry dF/du is NaN or infinite");
+        if constexpr (tr::has_c)
+          if (!out.C.allFinite()) ctx.fail(error_code::non_finite, "a Jacobian entry dF/dv is NaN or infinite");
+        if constexpr (tr::has_m)
+          if (!out.M.allFinite()) ctx.fail(error_code::non_finite, "a Jacobian entry dF/da is NaN or infinite");
+        ctx.fail(error_code::non_finite, "a Jacobian entry is NaN or infinite");
+      }
     }
   }
 

@@ -145,7 +145,10 @@ struct local_input {
 /// What an element evaluation writes: its flows f (the forces the SYSTEM applies
 /// TO the element; zero with no external action) and the Jacobian blocks its
 /// passport declares. Absent blocks are of type absent_block and cannot be written.
-/// `want_jacobian` is false at the zero step, where blocks may be skipped.
+/// `want_jacobian` is false when the caller needs the flows only (the zero step,
+/// the iterations on a kept Jacobian): an element may then skip its blocks. The
+/// assembler hands the blocks over zeroed only when it is true, and reads them
+/// only then, so an element must never compute its flows from its own blocks.
 template <class E>
 struct local_output {
   using traits = element_traits<E>;

@@ -42,7 +42,9 @@ concept Integrator = std::copyable<S> && requires(const S s, double x, double& r
 ///   (throws pradis::error with code singular_matrix and the equation as dof());
 /// - `solve(b)`: overwrites b with the solution, using the last factorisation.
 /// The simulation keeps a factorisation across solves (modified Newton), so
-/// solve() must not disturb it.
+/// solve() must not disturb it. Optional: `solve(b1, b2)` for two right-hand
+/// sides at once (the BDF driver's stabilised constraints need two per
+/// iteration; without it, it calls solve() twice).
 template <class S>
 concept LinearSolver = std::default_initializable<S> && std::movable<S> &&
                        requires(S s, const S cs, const linalg::sparsity_pattern& p, std::span<const double> values,

@@ -95,7 +95,7 @@ struct planar_rigid_link_t {
     const double l0 = ctx.work[0];
     const double dx = (p.xb0 + in.u(2)) - (p.xa0 + in.u(0));
     const double dy = (p.yb0 + in.u(3)) - (p.ya0 + in.u(1));
-    const double l = std::hypot(dx, dy);
+    const double l = std::sqrt(dx * dx + dy * dy);  // sqrt, not the slower hypot: l is checked below
     if (!(l > min_length * std::max(1.0, l0))) ctx.singular("the length of the link has become close to zero");
     const double c = dx / l, s = dy / l, n = in.v(4);
     if (ctx.old_state.size() == 2 && ctx.new_state.size() == 2) {

@@ -30,6 +30,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "pradis/assembly/assembler.hpp"
@@ -104,6 +105,18 @@ void stabilised_rows(const Assembler& as, const global_state& s, index2_stabilis
   }
 }
 
+/// Solves for the shift and the correction with the same factorisation: in one
+/// call if the solver has a two-right-hand-side solve (sparse_lu), else in two.
+template <class Solver>
+void solve_both(const Solver& solver, std::vector<double>& b1, std::vector<double>& b2) {
+  if constexpr (requires { solver.solve(std::span<double>(b1), std::span<double>(b2)); }) {
+    solver.solve(std::span<double>(b1), std::span<double>(b2));
+  } else {
+    solver.solve(b1);
+    solver.solve(b2);
+  }
+}
+
 /// Newton on one step from the predictor (the velocities of s are set to v_p
 /// here). Returns whether it converged. `evaluate(coefficients, want_jacobian,
 /// constraint_jacobian, iteration)` evaluates the model at s into `as`; with
@@ -148,9 +161,10 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
         for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
         if (st) {
           stabilised_rows(as, s, *st, fresh_g, c, mem.c_jac, rhs);
-          solver.solve(st->rhs);
+          solve_both(solver, st->rhs, rhs);
+        } else {
+          solver.solve(rhs);
         }
-        solver.solve(rhs);
         ++stats.newton_iterations;
         const double scale = c == mem.c_jac ? 1.0 : 2 / (1 + c / mem.c_jac);
         bool finite = true;
