@@ -264,7 +264,8 @@ class sparse_lu {
                             (std::isfinite(el.failed_pivot) ? "zero or tiny"
                                                             : "not finite: element growth after tiny earlier pivots"));
     }
-    for (int i = 0; i < n; ++i) inv_diag_[static_cast<std::size_t>(i)] = 1.0 / fv[lu_.d_pos[static_cast<std::size_t>(i)]];
+    for (int i = 0; i < n; ++i)
+      inv_diag_[static_cast<std::size_t>(i)] = 1.0 / fv[lu_.d_pos[static_cast<std::size_t>(i)]];
     const long perturbed = el.perturbed;
     const int first_perturbed = el.first_perturbed;
     stats_.perturbed_pivots = perturbed;
