@@ -37,7 +37,11 @@ inline const std::vector<program_info>& integration_programs() {
       {"BDF", "variable-order (1..5), variable-step BDF with local error control (as DASSL and IDA): the fastest "
               "choice for smooth motions at tight tolerances; damps undamped oscillations slightly",
        "Calculation 'BDF (END=1, DRLTX=1e-6, MAXORD=5)",
-       "MAXORD - highest order, 1..5 (5)\nBDF always controls its error with DRLTX and DABSX (and CONTROL); "
+       "MAXORD - highest order, 1..5 (5)\n"
+       "LQBAND - a rotational node whose quaternion norm left [1 - LQBAND, 1 + LQBAND] is scaled back to 1 after a "
+       "step (exact); 0: every step, >= 0.1: never (0.01)\n"
+       "INDEX2 - exact joints: 1 stabilised index-2 form, 0 plain index-3 form (1)\n"
+       "BDF always controls its error with DRLTX and DABSX (and CONTROL); "
        "DABSU, DRLTU, DABSI, DRLTI, SECOND and PREDICT do not apply\n"},
   };
   return v;

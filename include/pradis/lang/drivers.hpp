@@ -80,7 +80,7 @@ class stage_drivers {
   /// Makes a BDF driver with options o current, continuing from the current
   /// driver's state if a stage has run (BDF starts every stage at order 1).
   void use_bdf(const bdf_options& o) {
-    if (bdf_active_ && bdf_ && bdf_->options().max_order == o.max_order) return;
+    if (bdf_active_ && bdf_ && bdf_->options() == o) return;
     auto next = std::make_unique<bdf_type>(driven_, o);
     static_cast<Session*>(this)->attach(*next);
     if (has_driver() && started_) {

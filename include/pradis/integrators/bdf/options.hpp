@@ -63,6 +63,9 @@ struct bdf_options {
   /// "Rotational nodes"). 0 renormalises at every step; at or above 0.1 (the
   /// drift that is code 75) never.
   double lq_renormalise = 0.01;
+
+  /// Equal options (the language keeps a BDF driver across stages whose options are equal).
+  bool operator==(const bdf_options&) const = default;
 };
 
 /// Checks bdf_options; returns the message of the first invalid one (the
