@@ -7,10 +7,14 @@
 #include <algorithm>
 #include <cstddef>
 #include <limits>
+#include <span>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
+#include "pradis/core/error.hpp"
 #include "pradis/linalg/sparsity.hpp"
 
 namespace pradis::linalg::detail {
@@ -179,6 +183,42 @@ inline lu_structure symbolic_lu(const sparsity_pattern& a, const sparsity_patter
   }
   s.perm = std::move(perm);
   return s;
+}
+
+/// The checks of sparse_lu::analyze on its input: a well-formed pattern (else
+/// std::invalid_argument), zero-diagonal rows inside [0, n) (std::invalid_argument), and
+/// no row or column without entries (pradis::error structurally_singular naming it).
+inline void check_analysable(const sparsity_pattern& a, std::span<const int> zero_diagonal_rows) {
+  if (!a.is_valid()) throw std::invalid_argument("sparse_lu::analyze: malformed CSR sparsity pattern");
+  const int n = a.n;
+  for (const int r : zero_diagonal_rows)
+    if (r < 0 || r >= n)
+      throw std::invalid_argument("sparse_lu::analyze: zero-diagonal row " + std::to_string(r) + " outside [0, " +
+                                  std::to_string(n) + ")");
+  for (int i = 0; i < n; ++i)
+    if (a.row_ptr[i] == a.row_ptr[i + 1])
+      throw error(error_code::structurally_singular, "row " + std::to_string(i) + " of the matrix has no entries",
+                  {}, {}, i);
+  std::vector<char> seen(static_cast<std::size_t>(n), 0);
+  for (const int j : a.col) seen[static_cast<std::size_t>(j)] = 1;
+  for (int j = 0; j < n; ++j)
+    if (!seen[static_cast<std::size_t>(j)])
+      throw error(error_code::structurally_singular, "column " + std::to_string(j) + " of the matrix has no entries",
+                  {}, {}, j);
+}
+
+/// Throws std::logic_error unless `perm`, returned by the ordering policy `name`, is a
+/// permutation of 0..n-1.
+inline void check_permutation(const std::vector<int>& perm, int n, std::string_view name) {
+  if (static_cast<long>(perm.size()) != n)
+    throw std::logic_error("sparse_lu::analyze: ordering '" + std::string(name) +
+                           "' returned a permutation of the wrong size");
+  std::vector<char> seen(static_cast<std::size_t>(n), 0);
+  for (const int o : perm) {
+    if (o < 0 || o >= n || seen[static_cast<std::size_t>(o)])
+      throw std::logic_error("sparse_lu::analyze: ordering '" + std::string(name) + "' did not return a permutation");
+    seen[static_cast<std::size_t>(o)] = 1;
+  }
 }
 
 }  // namespace pradis::linalg::detail

@@ -24,6 +24,7 @@
 #include "pradis/core/error.hpp"
 #include "pradis/linalg/lu_condition.hpp"
 #include "pradis/linalg/lu_numeric.hpp"
+#include "pradis/linalg/lu_refinement.hpp"
 #include "pradis/linalg/lu_statistics.hpp"
 #include "pradis/linalg/lu_substitution.hpp"
 #include "pradis/linalg/lu_symbolic.hpp"
@@ -138,40 +139,12 @@ class sparse_lu {
     const auto t0 = std::chrono::steady_clock::now();
     analyzed_ = false;
     factorized_ = false;
-    if (!a.is_valid()) throw std::invalid_argument("sparse_lu::analyze: malformed CSR sparsity pattern");
+    detail::check_analysable(a, zero_diagonal_rows);
     const int n = a.n;
-    for (const int r : zero_diagonal_rows)
-      if (r < 0 || r >= n)
-        throw std::invalid_argument("sparse_lu::analyze: zero-diagonal row " + std::to_string(r) + " outside [0, " +
-                                    std::to_string(n) + ")");
-    for (int i = 0; i < n; ++i)
-      if (a.row_ptr[i] == a.row_ptr[i + 1])
-        throw error(error_code::structurally_singular, "row " + std::to_string(i) + " of the matrix has no entries",
-                    {}, {}, i);
-    {
-      std::vector<char> seen(n, 0);
-      for (const int j : a.col) seen[j] = 1;
-      for (int j = 0; j < n; ++j)
-        if (!seen[j])
-          throw error(error_code::structurally_singular,
-                      "column " + std::to_string(j) + " of the matrix has no entries", {}, {}, j);
-    }
 
     std::vector<int> perm = ordering_(a);
     const auto t1 = std::chrono::steady_clock::now();
-    {
-      std::vector<int> inv(n, -1);
-      if (static_cast<long>(perm.size()) != n)
-        throw std::logic_error("sparse_lu::analyze: ordering '" + std::string(Ordering::name) +
-                               "' returned a permutation of the wrong size");
-      for (int k = 0; k < n; ++k) {
-        const int o = perm[k];
-        if (o < 0 || o >= n || inv[o] != -1)
-          throw std::logic_error("sparse_lu::analyze: ordering '" + std::string(Ordering::name) +
-                                 "' did not return a permutation");
-        inv[o] = k;
-      }
-    }
+    detail::check_permutation(perm, n, Ordering::name);
     pattern_ = a;
     g_ = symmetric_adjacency(a);
     base_perm_ = std::move(perm);
@@ -476,48 +449,11 @@ class sparse_lu {
   }
 
   /// Residual check and iterative refinement of x = LU^{-1} b (equilibrated), with b in
-  /// rhs_; see solve_refined().
+  /// rhs_ (detail::refine); see solve_refined().
   double refine(double* x) const {
-    const int n = stats_.n;
-    double eta = residual(x);
-    constexpr double target = 64 * std::numeric_limits<double>::epsilon();  // roundoff level
-    for (int step = 0; step < max_refinement_steps && eta > target; ++step) {
-      std::copy(res_.begin(), res_.end(), corr_.begin());
-      detail::lu_solve(lu_, f_val_.data(), work_.data(), corr_.data(), inv_diag_.data());
-      for (int r = 0; r < n; ++r) x[r] += corr_[r];
-      ++stats_.refinement_steps;
-      const double next = residual(x);
-      if (!(next < eta)) {  // worse (or NaN): undo and stop
-        for (int r = 0; r < n; ++r) x[r] -= corr_[r];
-        eta = residual(x);
-        break;
-      }
-      const bool stalled = next > 0.1 * eta;
-      eta = next;
-      if (stalled) break;
-    }
-    return eta;
-  }
-
-  /// res_ := rhs_ - A x (equilibrated); returns the backward error
-  /// max_i |r_i| / (||A_i||_1 ||x||_inf + |b_i|) (0/0 counts as 0, r/0 and a non-finite x as
-  /// infinity).
-  double residual(const double* x) const {
-    const int n = stats_.n;
-    double xmax = 0;
-    for (int r = 0; r < n; ++r) xmax = std::max(xmax, std::abs(x[r]));
-    if (!std::isfinite(xmax)) return std::numeric_limits<double>::infinity();
-    const int* const rp = pattern_.row_ptr.data();
-    const int* const ac = pattern_.col.data();
-    double eta = 0;
-    for (int r = 0; r < n; ++r) {
-      double s = rhs_[r];
-      for (int q = rp[r]; q < rp[r + 1]; ++q) s -= a_val_[q] * x[ac[q]];
-      res_[r] = s;
-      const double den = row_norm1_[r] * xmax + std::abs(rhs_[r]);
-      if (s != 0) eta = std::max(eta, den > 0 ? std::abs(s) / den : std::numeric_limits<double>::infinity());
-    }
-    return eta;
+    return detail::refine({&pattern_, a_val_.data(), row_norm1_.data()}, lu_, f_val_.data(), inv_diag_.data(),
+                          rhs_.data(), x, res_.data(), corr_.data(), work_.data(), max_refinement_steps,
+                          stats_.refinement_steps);
   }
 
   [[noreturn]] static void throw_singular(int row, std::string msg) {
