@@ -9,7 +9,10 @@
 // reference from a closed form, CPU time = minimum of 3 runs after one warm-up,
 // all solvers in one process. pradis's series: every one-step scheme under error
 // control and with fixed steps, the BDF driver ("BDF"), and on topx and chain the
-// BDF driver in its plain index-3 form ("BDF-index3").
+// BDF driver in its plain index-3 form ("BDF-index3"). Tolerance sweeps (rtol = atol):
+// the one-step schemes 1e-2 .. 1e-7 and odeint and Simbody 1e-3 .. 1e-10, one per
+// decade; pradis's BDF (1e-2 .. 1e-10) and IDA and CVODE (1e-3 .. 1e-10), three per
+// decade.
 //
 // Problems (second-order systems M u'' + g(t, u, u') = 0, M diagonal; and two 3D
 // rigid-body problems):
@@ -976,15 +979,34 @@ struct bench {
     std::fflush(stdout);
   }
 
+  /// Tolerances 10^(from) down to 10^(to), `per_decade` of them per decade (log-spaced).
+  static std::vector<double> tolerance_sweep(int from, int to, int per_decade) {
+    std::vector<double> t;
+    for (int k = from * per_decade; k >= to * per_decade; --k)
+      t.push_back(std::pow(10.0, static_cast<double>(k) / per_decade));
+    return t;
+  }
+  /// The CSV's setting of a tolerance: "tol=1e-04", "tol=4.6e-05".
+  static std::string tolerance_label(double tol) {
+    char s[32];
+    const double mant = tol / std::pow(10.0, std::floor(std::log10(tol) + 1e-9));
+    if (std::abs(mant - std::round(mant)) < 1e-9 && std::round(mant) == 1)
+      std::snprintf(s, sizeof s, "tol=%.0e", tol);
+    else
+      std::snprintf(s, sizeof s, "tol=%.1e", tol);
+    return s;
+  }
+
   template <class Scheme>
   void pradis_sweeps(const problem& pb, Scheme scheme, const std::string& method, bool fixed) {
-    std::vector<double> tols = smoke ? std::vector<double>{1e-2}
-                                     : std::vector<double>{1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7};
-    // BDF (orders up to 5) reaches the errors 1e-6 .. 1e-8 at tolerances as tight as the peers'.
-    if (!smoke && method.starts_with("BDF")) tols.insert(tols.end(), {1e-8, 1e-9, 1e-10});
+    // BDF (orders up to 5) reaches the errors 1e-6 .. 1e-8 at tolerances as tight as the
+    // peers', and its runs are cheap: three tolerances per decade down to 1e-10, as for
+    // IDA and CVODE (tolerance_sweep).
+    const std::vector<double> tols = smoke                        ? std::vector<double>{1e-2}
+                                     : method.starts_with("BDF") ? tolerance_sweep(-2, -10, 3)
+                                                                 : tolerance_sweep(-2, -7, 1);
     for (double tol : tols) {
-      char s[32];
-      std::snprintf(s, sizeof s, "tol=%.0e", tol);
+      const std::string s = tolerance_label(tol);
       measure(pb, "pradis", method, s, [&] { return run_pradis(pb, scheme, {.error_control = true, .tol = tol}); });
     }
     if (!fixed) return;
@@ -1005,15 +1027,18 @@ struct bench {
   }
 
   void peers(const problem& pb) {
-    const std::vector<double> tols =
-        smoke ? std::vector<double>{1e-3} : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
-    for (double tol : tols) {
-      char s[32];
-      std::snprintf(s, sizeof s, "tol=%.0e", tol);
+    // IDA and CVODE: three tolerances per decade, as pradis's BDF (their runs are cheap,
+    // and a front of single points per decade moves the interpolated ratios with every
+    // lucky or unlucky point); the others one per decade.
 #ifdef PRADIS_WP_SUNDIALS
+    for (double tol : smoke ? std::vector<double>{1e-3} : tolerance_sweep(-3, -10, 3)) {
+      const std::string s = tolerance_label(tol);
       measure(pb, "IDA", "BDF", s, [&] { return run_ida(pb, tol); });
       measure(pb, "CVODE", "BDF", s, [&] { return run_cvode(pb, tol); });
+    }
 #endif
+    for (double tol : smoke ? std::vector<double>{1e-3} : tolerance_sweep(-3, -10, 1)) {
+      const std::string s = tolerance_label(tol);
 #ifdef PRADIS_WP_BOOST
       measure(pb, "odeint", "rosenbrock4", s, [&] { return run_rosenbrock4(pb, tol); });
       measure(pb, "odeint", "dopri5", s, [&] { return run_dopri5(pb, tol); });
