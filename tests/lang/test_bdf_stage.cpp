@@ -153,7 +153,7 @@ TEST_SUITE("lang/bdf") {
     CHECK(e.find("LQBAND = -0.5 must be a number >= 0") != std::string::npos);
     e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, INDEX2=2)\n"));
     CHECK(e.find("test.prd:13:") != std::string::npos);
-    CHECK(e.find("INDEX2") != std::string::npos);
+    CHECK(e.find("INDEX2 must be a whole number from 0 to 1") != std::string::npos);
     e = lang_test::error_of(oscillator("    Calc 'GALPHA (END=1, LQBAND=0.05)\n"));
     CHECK(e.find("key LQBAND belongs to BDF, not to GALPHA") != std::string::npos);
     e = lang_test::error_of(oscillator("    Calc 'HHT (END=1, INDEX2=0)\n"));
