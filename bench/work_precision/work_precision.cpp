@@ -1148,6 +1148,12 @@ struct bench {
       // with its default stabilised index-2 form (docs/bdf.md, "Index-3 constraints").
       if (pb.name == "topx" || pb.name == "chain")
         pradis_sweeps(pb, bdf_method{{.stabilised_index2 = false}}, "BDF-index3", false);
+      // The rotational problems also with BDF's rotational nodes in the rate form and
+      // with the kept Newton matrix not turned (docs/bdf.md, "Rotational nodes", "Newton").
+      if (pb.name == "freebody" || pb.name == "top" || pb.name == "topx") {
+        pradis_sweeps(pb, bdf_method{{.rotation_rates = true}}, "BDF-rates", false);
+        pradis_sweeps(pb, bdf_method{{.rotated_jacobian = false}}, "BDF-unturned", false);
+      }
       peers(pb);
     }
     return true;

@@ -304,6 +304,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       w_(i) = skip ? 0.0 : 1 / (opt_.drltx * std::abs(s_.u(d)) + dabsx * s);
       w_(ne + i) = skip ? 0.0 : (index2 ? hv : 1.0) / (opt_.drltx * std::abs(s_.v(d)) + dabsx * s);
     }
+    rates_.weights(s_, ne, opt_.drltx, dabsx, m_.scales(), index2_, hv, w_);
   }
   /// Starts the history at order 1 from the current state, with IDA's first
   /// step (error control) or SMIN.
@@ -317,6 +318,9 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       yp(i) = s_.v(d);
       yp(ne + i) = s_.a(d);
     }
+    rates_.build(m_.rotation_nodes(), asm_, bopt_.rotation_rates);
+    turned_.build(m_.rotation_nodes(), asm_, bopt_.rotated_jacobian);
+    rates_.rates(s_, ne, y, &yp);
     bdf_detail::mark_constraints(
         asm_, index3_, bopt_.stabilised_index2 && !bdf_detail::driven_constraint(m_, index3_, prescribed_), index2_,
         stab_);
@@ -352,6 +356,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     const bool ok = bdf_detail::correct(
         asm_, solver_, s_, y_p_, yp_p_, c, hist_.c_last(), w_, opt_.newton, bopt_.newton_tolerance,
         bopt_.coefficient_change, mem, rhs_, dy_, stats_, last_failure_, stab_.rows.empty() ? nullptr : &stab_,
+        rates_.empty() ? nullptr : &rates_, turned_.empty() ? nullptr : &turned_,
         [&](const jacobian_coefficients& jc, bool jac, bool rows, int k) {
           evaluate(jc, h, jac, k, true, rows ? &constraint_types_ : nullptr);
         });
@@ -367,6 +372,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
         e_(i) = s_.u(d) - y_p_(i);
         e_(ne + i) = s_.v(d) - y_p_(ne + i);
       }
+      rates_.errors(s_, ne, y_p_, e_);
     }
     if (!ok) {
       undo(t0);
@@ -412,7 +418,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     // evaluation was at the iterate before the last correction).
     if (!m_.new_state_pool().empty()) evaluate({0, 0, 0}, h, false, 0, true);
     hist_.complete(e_, w_, bopt_.max_order, bopt_.fixed_order, opt_.error_control, opt_.smax);
-    if (bdf_detail::renormalise_rotation_nodes(m_.rotation_nodes(), asm_, s_, hist_, bopt_.lq_renormalise) > 0)
+    if (bdf_detail::renormalise_rotation_nodes(m_.rotation_nodes(), asm_, s_, hist_, bopt_.lq_renormalise, rates_) > 0)
       jac_valid_ = false;  // dF/dq scales with the node
     if (opt_.error_control && hist_.step() < opt_.control) hist_.set_step(std::min(opt_.control, opt_.smax));
     if (!opt_.error_control) {
@@ -460,6 +466,8 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   double c_jac_ = 0;  // c of the kept factorisation
   double ss_ = 20;    // IDA's rate / (1 - rate) estimate for the first Newton correction
   std::vector<char> index2_;  // by equation: a DOF of an index-3 constraint's row (mark_constraints)
+  bdf_detail::rotated_jacobian turned_;    // the kept Newton matrix turned with the rotational nodes
+  bdf_detail::rate_form rates_;            // rotational nodes whose velocity rows hold (w, r) (rate_form.hpp)
   bdf_detail::index2_stabilisation stab_;  // the stabilised index-2 form (empty: none, or the plain index-3 form)
   std::vector<char> constraint_types_;     // per element type: owns an index-3 multiplier (bdf_detail::constraint_types)
   int nef_ = 0, ncf_ = 0;

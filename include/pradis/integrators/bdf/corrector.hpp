@@ -37,6 +37,8 @@
 #include "pradis/core/error.hpp"
 #include "pradis/integrators/bdf/constraints.hpp"
 #include "pradis/integrators/bdf/history.hpp"
+#include "pradis/integrators/bdf/rate_form.hpp"
+#include "pradis/integrators/bdf/rotated_jacobian.hpp"
 #include "pradis/integrators/options.hpp"
 
 namespace pradis::bdf_detail {
@@ -66,10 +68,11 @@ inline double kept_rate_ss(double measured, double ss_old) {
 
 /// Sets the free DOFs of s from their velocities: u = u_p + (v + sh - u'_p) / c,
 /// a = v'_p + c (v - v_p); y_p, yp_p stack (u, v) of the ne equations; sh the
-/// shift of the stabilised constraints (index2_stabilisation), or none.
+/// shift of the stabilised constraints (index2_stabilisation), or none; rf the
+/// rotational nodes in the rate form (their a from the corrector of their rates).
 template <class Assembler>
 void complete_state(const Assembler& as, global_state& s, const Eigen::VectorXd& y_p, const Eigen::VectorXd& yp_p,
-                    double c, const index2_stabilisation* st = nullptr) {
+                    double c, const index2_stabilisation* st = nullptr, const rate_form* rf = nullptr) {
   const int ne = as.equations();
   for (int i = 0; i < ne; ++i) {
     const auto d = as.dof_of(i);
@@ -78,6 +81,7 @@ void complete_state(const Assembler& as, global_state& s, const Eigen::VectorXd&
     s.u(d) = y_p(i) + (v + sh - yp_p(i)) / c;
     s.a(d) = yp_p(ne + i) + c * (v - y_p(ne + i));
   }
+  if (rf) rf->accelerations(s, ne, y_p, yp_p, c);
 }
 
 /// The stabilised constraints' part of one Newton iteration (see
@@ -122,12 +126,14 @@ void solve_both(const Solver& solver, std::vector<double>& b1, std::vector<doubl
 /// constraint_jacobian, iteration)` evaluates the model at s into `as`; with
 /// constraint_jacobian (and not want_jacobian) it assembles the Jacobians of
 /// the element types that own index-3 multipliers only, enough for G. `failure` receives a
-/// singular matrix or situation that ended the last attempt.
+/// singular matrix or situation that ended the last attempt. With rf, the velocity
+/// rows of its nodes in y_p, yp_p and dy are rates (rate_form.hpp).
 template <class Assembler, class Solver, class Evaluate>
 bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::VectorXd& y_p, const Eigen::VectorXd& yp_p,
              double c, double c_last, const Eigen::VectorXd& w, const newton_options& nw, double eps,
              double window, newton_memory& mem, std::vector<double>& rhs, Eigen::VectorXd& dy, run_statistics& stats,
-             std::optional<error>& failure, index2_stabilisation* st, Evaluate&& evaluate) {
+             std::optional<error>& failure, index2_stabilisation* st, const rate_form* rf, rotated_jacobian* rj,
+             Evaluate&& evaluate) {
   const int ne = as.equations();
   const jacobian_coefficients jc{1 / c, 1, c};
   bool refresh = !mem.valid;
@@ -141,8 +147,9 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
   for (;;) {
     const bool fresh = refresh;
     for (int i = 0; i < ne; ++i) s.v(as.dof_of(i)) = y_p(ne + i);
+    if (rf) rf->predicted_velocities(s, ne, y_p);
     if (st) std::fill(st->shift.begin(), st->shift.end(), 0.0);
-    complete_state(as, s, y_p, yp_p, c, st);
+    complete_state(as, s, y_p, yp_p, c, st, rf);
     double oldnrm = 0;
     bool converged = false;
     try {
@@ -154,16 +161,21 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
           solver.factorize(as.values());
           ++stats.factorizations;
           mem.valid = true;
+          if (rj) rj->set_reference(s);
           mem.c_jac = c;
           mem.ss = 20;
           refresh = false;
         }
         for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
+        if (st) stabilised_rows(as, s, *st, fresh_g, c, mem.c_jac, rhs);
         if (st) {
-          stabilised_rows(as, s, *st, fresh_g, c, mem.c_jac, rhs);
           solve_both(solver, st->rhs, rhs);
         } else {
           solver.solve(rhs);
+        }
+        if (rj) {
+          rj->from_reference(s, rhs);
+          if (st) rj->from_reference(s, st->rhs);
         }
         ++stats.newton_iterations;
         const double scale = c == mem.c_jac ? 1.0 : 2 / (1 + c / mem.c_jac);
@@ -181,7 +193,8 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
           dy(ne + i) = dv;
         }
         if (!finite) break;
-        complete_state(as, s, y_p, yp_p, c, st);
+        complete_state(as, s, y_p, yp_p, c, st, rf);
+        if (rf) rf->corrections(s, ne, dy);
         const double delnrm = wrms(dy, w);
         if (m == 0) {
           oldnrm = delnrm;

@@ -63,6 +63,16 @@ struct bdf_options {
   /// "Rotational nodes"). 0 renormalises at every step; at or above 0.1 (the
   /// drift that is code 75) never.
   double lq_renormalise = 0.01;
+  /// The rate form of the rotational nodes: the velocity half of the BDF
+  /// history holds each node's body angular velocity and norm rate instead of
+  /// q' (docs/bdf.md, "Rotational nodes"; rate_form.hpp). false: q' (the
+  /// second-order form of every other DOF).
+  bool rotation_rates = false;
+  /// The kept Newton matrix is turned with the rotational nodes: a solve with
+  /// the factorisation made at the orientations q0 maps the node's rows and
+  /// columns from q0 to the current orientations (docs/bdf.md, "Newton";
+  /// rotated_jacobian.hpp). false: used as it is.
+  bool rotated_jacobian = true;
 
   /// Equal options (the language keeps a BDF driver across stages whose options are equal).
   bool operator==(const bdf_options&) const = default;

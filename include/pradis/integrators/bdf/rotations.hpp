@@ -21,6 +21,7 @@
 
 #include "pradis/assembly/assembler.hpp"
 #include "pradis/integrators/bdf/history.hpp"
+#include "pradis/integrators/bdf/rate_form.hpp"
 #include "pradis/model/handles.hpp"
 
 namespace pradis::bdf_detail {
@@ -28,10 +29,11 @@ namespace pradis::bdf_detail {
 /// Renormalises, after an accepted step, every rotational node whose norm left
 /// [1 - band, 1 + band] (bdf_options::lq_renormalise) and whose DOFs q1..q4 are all
 /// free equations or the ground: scales u, v, a of those DOFs in s and their rows
-/// in the history. Returns the number of nodes renormalised.
+/// in the history (not the velocity rows of a node in the rate form, rf: its
+/// rates are scale invariant). Returns the number of nodes renormalised.
 template <class Assembler>
 int renormalise_rotation_nodes(const std::vector<rotation_node_record>& nodes, const Assembler& as, global_state& s,
-                               history& hist, double band) {
+                               history& hist, double band, const rate_form& rf) {
   const int ne = as.equations();
   int count = 0;
   for (const rotation_node_record& node : nodes) {
@@ -53,7 +55,7 @@ int renormalise_rotation_nodes(const std::vector<rotation_node_record>& nodes, c
       s.p(d) *= l;
       const int e = as.equation_of(d);
       hist.scale_row(e, l);
-      hist.scale_row(ne + e, l);
+      if (!rf.holds(e)) hist.scale_row(ne + e, l);
     }
     ++count;
   }
