@@ -4,7 +4,7 @@
 // schemes following each other from the state the previous stage reached; a
 // $SAVE / $RESTORE between two BDF stages reproducing the uninterrupted run
 // bit for bit (both drivers write the same checkpoint format and BDF starts
-// every stage at order 1); OPTIM, CONTROL, LQBAND and INDEX2 on a BDF stage; the keys
+// every stage at order 1); OPTIM, CONTROL, LQBAND, INDEX2, TURN and RATES on a BDF stage; the keys
 // BDF refuses and bad values.
 
 #include <cmath>
@@ -119,22 +119,27 @@ TEST_SUITE("lang/bdf") {
     CHECK(held->stages()[0].program == "BDF");
   }
 
-  TEST_CASE("LQBAND and INDEX2 set the BDF driver's options; a stage with other options gets its own driver") {
-    auto s = lang_test::run(oscillator("    A 'BDF (END=0.5, OUT=0.1, SMAX=0.1, DRLTX=1E-9, LQBAND=0.05, INDEX2=0)\n"
+  TEST_CASE("LQBAND, INDEX2, TURN and RATES set the BDF driver's options; a stage with other options gets its own "
+            "driver") {
+    auto s = lang_test::run(oscillator("    A 'BDF (END=0.5, OUT=0.1, SMAX=0.1, DRLTX=1E-9, LQBAND=0.05, INDEX2=0, "
+                                       "TURN=0, RATES=1)\n"
                                        "    B 'BDF (END=1, OUT=0.1, SMAX=0.1, DRLTX=1E-9)\n"));
     REQUIRE(s->stages().size() == 2);
     // The session keeps the last driver: stage B's options are the defaults again.
     CHECK(s->bdf_ptr()->options() == bdf_options{});
-    auto a = lang_test::run(oscillator("    A 'BDF (END=0.5, OUT=0.1, SMAX=0.1, DRLTX=1E-9, LQBAND=0.05, INDEX2=0)\n"));
+    auto a = lang_test::run(oscillator("    A 'BDF (END=0.5, OUT=0.1, SMAX=0.1, DRLTX=1E-9, LQBAND=0.05, INDEX2=0, "
+                                       "TURN=0, RATES=1)\n"));
     CHECK(a->bdf_ptr()->options().lq_renormalise == 0.05);
     CHECK_FALSE(a->bdf_ptr()->options().stabilised_index2);
+    CHECK_FALSE(a->bdf_ptr()->options().rotated_jacobian);
+    CHECK(a->bdf_ptr()->options().rotation_rates);
     CHECK(a->bdf_ptr()->options().max_order == 5);
     // The oscillator has no rotational node and no exact joint: the keys change nothing
     // of its motion (exact solution as in the first test).
     CHECK(max_error(*s) < 1e-6);
   }
 
-  TEST_CASE("keys BDF refuses, MAXORD, LQBAND and INDEX2 out of range, are located errors") {
+  TEST_CASE("keys BDF refuses, MAXORD, LQBAND, INDEX2, TURN and RATES out of range, are located errors") {
     std::string e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, BETA=0.3)\n"));
     CHECK(e.find("test.prd:13:") != std::string::npos);
     CHECK(e.find("key BETA belongs to NEWMARK, not to BDF") != std::string::npos);
@@ -158,6 +163,16 @@ TEST_SUITE("lang/bdf") {
     CHECK(e.find("key LQBAND belongs to BDF, not to GALPHA") != std::string::npos);
     e = lang_test::error_of(oscillator("    Calc 'HHT (END=1, INDEX2=0)\n"));
     CHECK(e.find("key INDEX2 belongs to BDF, not to HHT") != std::string::npos);
+    e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, TURN=2)\n"));
+    CHECK(e.find("test.prd:13:") != std::string::npos);
+    CHECK(e.find("TURN must be a whole number from 0 to 1") != std::string::npos);
+    e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, RATES=-1)\n"));
+    CHECK(e.find("test.prd:13:") != std::string::npos);
+    CHECK(e.find("RATES must be a whole number from 0 to 1") != std::string::npos);
+    e = lang_test::error_of(oscillator("    Calc 'NEWMARK (END=1, RATES=1)\n"));
+    CHECK(e.find("key RATES belongs to BDF, not to NEWMARK") != std::string::npos);
+    e = lang_test::error_of(oscillator("    Calc 'SHTERM (END=1, TURN=0)\n"));
+    CHECK(e.find("key TURN belongs to BDF, not to SHTERM") != std::string::npos);
     e = lang_test::error_of(oscillator("    Calc 'BDF (OUT=1)\n"));
     CHECK(e.find("BDF needs END=<end time>") != std::string::npos);
   }

@@ -75,7 +75,7 @@ class action_checker : public model_builder {
     location out_loc;         ///< where OUT is
     int optim = -1;           ///< OPTIM: ordering level 0..4, or -1 to choose by size
     bool bdf = false;         ///< the BDF program (bdf_opt), not a one-step scheme
-    bdf_options bdf_opt;      ///< BDF: MAXORD, LQBAND, INDEX2
+    bdf_options bdf_opt;      ///< BDF: MAXORD, LQBAND, INDEX2, TURN, RATES
   };
 
   /// The program that owns a scheme key (BETA, GAMMA, ALPHA, RHOINF), or "" for a common key.
@@ -83,7 +83,7 @@ class action_checker : public model_builder {
     if (k == "BETA" || k == "GAMMA") return "NEWMARK";
     if (k == "ALPHA") return "HHT";
     if (k == "RHOINF") return "GALPHA";
-    if (k == "MAXORD" || k == "LQBAND" || k == "INDEX2") return "BDF";
+    if (k == "MAXORD" || k == "LQBAND" || k == "INDEX2" || k == "TURN" || k == "RATES") return "BDF";
     return "";
   }
 
@@ -103,7 +103,8 @@ class action_checker : public model_builder {
     static const std::vector<std::string> known{"END",   "OUT",   "SMAX",  "SMIN",    "IGNORE",  "DABSU",
                                                 "DRLTU", "DABSI", "DRLTI", "ITR",     "SECOND",  "BETA",
                                                 "GAMMA", "ALPHA", "RHOINF", "DABSX",  "DRLTX",   "CONTROL",
-                                                "PREDICT", "SAVE",  "OPTIM",   "MAXORD", "LQBAND",  "INDEX2"};
+                                                "PREDICT", "SAVE",  "OPTIM",   "MAXORD", "LQBAND",  "INDEX2",
+                                                "TURN",  "RATES"};
     for (const auto& g : c.args)
       for (const auto& it : g) {
         if (it.what != ast::item::kind::keyed)
@@ -127,7 +128,7 @@ class action_checker : public model_builder {
             if (k == no)
               fail(it.loc, "key " + k + " does not apply to BDF (its Newton and error tests are weighted by DRLTX and "
                            "DABSX; keys of BDF: END OUT SMAX SMIN IGNORE DRLTX DABSX CONTROL ITR SAVE OPTIM MAXORD "
-                           "LQBAND INDEX2)");
+                           "LQBAND INDEX2 TURN RATES)");
         const std::string owner = owner_of_key(k);
         if (!owner.empty() && owner != c.program)
           fail(it.loc, "key " + k + " belongs to " + owner + ", not to " + c.program +
@@ -185,6 +186,10 @@ class action_checker : public model_builder {
                              "rotational node is scaled back to Lq = 1; 0: after every step, >= 0.1: never)");
         } else if (k == "INDEX2") {
           s.bdf_opt.stabilised_index2 = whole(v, "INDEX2", 0, 1) == 1;
+        } else if (k == "TURN") {
+          s.bdf_opt.rotated_jacobian = whole(v, "TURN", 0, 1) == 1;
+        } else if (k == "RATES") {
+          s.bdf_opt.rotation_rates = whole(v, "RATES", 0, 1) == 1;
         } else if (k == "OPTIM")
           s.optim = whole(v, "OPTIM", linalg::optim_min_level, linalg::optim_max_level);
         else if (k == "BETA")

@@ -37,12 +37,13 @@
 
 namespace pradis::bdf_detail {
 
-/// (w, r) of a quaternion and its rate (see the file comment).
+/// The rates of a rotational node (see the file comment).
 struct node_rates {
-  spatial::vec3 w;
-  double r = 0;
+  spatial::vec3 w;  ///< body angular velocity (2/s) G(q) q' (or its derivative)
+  double r = 0;     ///< norm rate q.q' / s (or its derivative)
 };
 
+/// (w, r) of a quaternion q and its rate qd.
 inline node_rates rates_of(const spatial::quaternion& q, const spatial::quaternion& qd) {
   const double s = q.squaredNorm();
   return {(2 / s) * (spatial::g_matrix(q) * qd), q.dot(qd) / s};
@@ -73,6 +74,7 @@ class rate_form {
     nodes_.clear();
     if (enabled) nodes_ = free_rotation_nodes(nodes, as);
   }
+  /// No node is handled (disabled, or no rotational node with four free DOFs).
   bool empty() const noexcept { return nodes_.empty(); }
   /// Whether equation i is a velocity row held in the rate form.
   bool holds(int i) const noexcept {

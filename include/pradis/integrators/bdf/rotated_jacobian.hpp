@@ -43,6 +43,7 @@ class rotated_jacobian {
     if (!enabled) return;
     for (const free_rotation_node& n : free_rotation_nodes(nodes, as)) nodes_.push_back({n.dof, n.eq});
   }
+  /// No node is handled (disabled, or no rotational node with four free DOFs).
   bool empty() const noexcept { return nodes_.empty(); }
 
   /// Records the orientations of the factorised matrix (after a factorisation at s).
