@@ -8,8 +8,10 @@
 // following Hairer-Wanner / DiffEqDevTools:
 // reference from a closed form, CPU time = minimum of 3 runs after one warm-up,
 // all solvers in one process. pradis's series: every one-step scheme under error
-// control and with fixed steps, the BDF driver ("BDF"), and on topx and chain the
-// BDF driver in its plain index-3 form ("BDF-index3"). Tolerance sweeps (rtol = atol):
+// control and with fixed steps, the BDF driver ("BDF"), on topx and chain the
+// BDF driver in its plain index-3 form ("BDF-index3"), and on the free body, top and
+// topx with the rate form ("BDF-rates") and with the kept Newton matrix not turned
+// ("BDF-unturned"). Tolerance sweeps (rtol = atol):
 // the one-step schemes 1e-2 .. 1e-7 and odeint and Simbody 1e-3 .. 1e-10, one per
 // decade; pradis's BDF (1e-2 .. 1e-10) and IDA and CVODE (1e-3 .. 1e-10), three per
 // decade.

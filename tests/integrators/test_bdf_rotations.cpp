@@ -13,6 +13,13 @@
 //    run reaches its end. The spin omega_3 about the symmetry axis is an exact invariant
 //    of the symmetric top (gravity and the joint act on the axis: no moment about it;
 //    Goldstein, Classical Mechanics, section 5.7).
+//  * The rate form (rate_form.hpp): its maps between (q', q'') and the body rates
+//    invert each other and differentiate (central differences); with fixed steps BDF3..5
+//    on the HLW body converge with their order, 23-53 times more accurate than the q' form.
+//  * The kept Newton matrix turned with the node (rotated_jacobian.hpp): the turned
+//    solution has the rate at q that the kept one has at q0; on the spinning top the
+//    turned matrix needs fewer Newton iterations and steps, and keeps the spin invariant
+//    closer.
 
 #include <doctest/doctest.h>
 
@@ -52,25 +59,27 @@ TEST_SUITE("integrators/bdf") {
     };
     // Both forms of the velocity history: q' (its rows are scaled with the node) and
     // the rate form (its rows are scale invariant and left alone).
-    for (const bool rates : {false, true})
-    for (int k : {2, 3}) {
-      CAPTURE(rates);
-      CAPTURE(k);
-      const result every = run(k, 0.0, rates), never = run(k, 1.0, rates);
-      const double scale = w0.lpNorm<Eigen::Infinity>();
-      const double discretisation = (never.w - w0).lpNorm<Eigen::Infinity>() / scale;
-      const double dw = (every.w - never.w).lpNorm<Eigen::Infinity>() / scale;
-      const double dr = (every.r - never.r).lpNorm<Eigen::Infinity>();
-      MESSAGE(std::string(rates ? "rate form, " : "q' form, ") << "BDF" << k << ": |w(T) - w(0)| " << discretisation << "; renormalised against not: w " << dw << ", R "
-                    << dr << "; Lq " << every.lq << " against " << never.lq);
-      CHECK(std::abs(every.lq - 1) < 1e-12);
-      CHECK(std::abs(never.lq - 1) > 1e-6);  // the run without renormalisation did drift
-      CHECK(dw < 1e-7);
-      CHECK(dr < 1e-7);
-      // Far below the discretisation error. The rate form's BDF3 error (1.0e-6) is 200
-      // times smaller than the q' form's, and the difference of the two runs (5e-9) is
-      // the Newton tolerance (1e-11 per step) gathered over 400 steps.
-      CHECK(dw < (rates ? 1e-2 : 1e-3) * discretisation);
+    for (const bool rates : {false, true}) {
+      for (int k : {2, 3}) {
+        CAPTURE(rates);
+        CAPTURE(k);
+        const result every = run(k, 0.0, rates), never = run(k, 1.0, rates);
+        const double scale = w0.lpNorm<Eigen::Infinity>();
+        const double discretisation = (never.w - w0).lpNorm<Eigen::Infinity>() / scale;
+        const double dw = (every.w - never.w).lpNorm<Eigen::Infinity>() / scale;
+        const double dr = (every.r - never.r).lpNorm<Eigen::Infinity>();
+        MESSAGE(std::string(rates ? "rate form, " : "q' form, ")
+                << "BDF" << k << ": |w(T) - w(0)| " << discretisation << "; renormalised against not: w " << dw
+                << ", R " << dr << "; Lq " << every.lq << " against " << never.lq);
+        CHECK(std::abs(every.lq - 1) < 1e-12);
+        CHECK(std::abs(never.lq - 1) > 1e-6);  // the run without renormalisation did drift
+        CHECK(dw < 1e-7);
+        CHECK(dr < 1e-7);
+        // Far below the discretisation error. The rate form's BDF3 error (1.0e-6) is 25
+        // times smaller than the q' form's (2.6e-5), and the difference of the two runs
+        // (6e-9) is the Newton tolerance (1e-11 per step) gathered over 400 steps.
+        CHECK(dw < (rates ? 1e-2 : 1e-3) * discretisation);
+      }
     }
   }
 
@@ -145,7 +154,8 @@ TEST_SUITE("integrators/bdf") {
     CHECK(std::abs((p.r - m.r) / (2 * dt) - xd.r) < 1e-8);
     // Scale invariance (q -> l q): the rates and their derivatives are unchanged,
     // which lets renormalisation leave the rate rows of the history alone.
-    const node_rates xl = bdf_detail::rates_of(3 * q0, 3 * q1), xdl = bdf_detail::rate_derivatives_of(3 * q0, 3 * q1, 3 * q2);
+    const node_rates xl = bdf_detail::rates_of(3 * q0, 3 * q1);
+    const node_rates xdl = bdf_detail::rate_derivatives_of(3 * q0, 3 * q1, 3 * q2);
     CHECK((xl.w - x.w).norm() < 1e-14);
     CHECK(std::abs(xl.r - x.r) < 1e-15);
     CHECK((xdl.w - xd.w).norm() < 1e-13);
