@@ -31,6 +31,21 @@
 
 using namespace pradis;
 
+namespace {
+/// One period of the HLW body in n fixed steps (started from SMIN), with the Newton
+/// tolerance `newton` far below the discretisation error.
+run_options hlw_fixed_steps(int n, double newton) {
+  run_options o;
+  o.end = wp::rigid::hlw_period;
+  o.smax = wp::rigid::hlw_period / n;
+  o.smin = 1e-6 * o.smax;
+  o.error_control = false;
+  o.drltx = newton;
+  o.dabsx = newton;
+  return o;
+}
+}  // namespace
+
 TEST_SUITE("integrators/bdf") {
   TEST_CASE("rotational nodes: renormalising Lq at every step gives the motion of the run that never does") {
     namespace rigid = wp::rigid;
@@ -45,14 +60,7 @@ TEST_SUITE("integrators/bdf") {
       rigid::freebody_model b;
       bdf_simulation sim(b.m, bdf_options{.max_order = k, .fixed_order = true, .lq_renormalise = band,
                                           .rotation_rates = rates});
-      run_options o;
-      o.end = rigid::hlw_period;
-      o.smax = rigid::hlw_period / 400;
-      o.smin = 1e-6 * o.smax;
-      o.error_control = false;
-      o.drltx = 1e-11;  // Newton tolerance far below the discretisation error
-      o.dabsx = 1e-11;
-      sim.run(o);
+      sim.run(hlw_fixed_steps(400, 1e-11));
       const Eigen::Matrix3d r = spatial::node_rotation(sim, b.r);
       return result{r.transpose() * spatial::node_angular_velocity(sim, b.r), r,
                     spatial::node_quaternion(sim, b.r).norm()};
@@ -172,14 +180,7 @@ TEST_SUITE("integrators/bdf") {
       // converged far below it either way.
       bdf_simulation sim(b.m, bdf_options{.max_order = k, .fixed_order = true, .rotation_rates = rates,
                                           .rotated_jacobian = false});
-      run_options o;
-      o.end = rigid::hlw_period;
-      o.smax = rigid::hlw_period / n;
-      o.smin = 1e-6 * o.smax;
-      o.error_control = false;
-      o.drltx = 1e-12;  // Newton tolerance far below the discretisation error
-      o.dabsx = 1e-12;
-      sim.run(o);
+      sim.run(hlw_fixed_steps(n, 1e-12));
       const Eigen::Matrix3d r = spatial::node_rotation(sim, b.r);
       const spatial::vec3 w = r.transpose() * spatial::node_angular_velocity(sim, b.r);
       return (w - w0).lpNorm<Eigen::Infinity>() / w0.lpNorm<Eigen::Infinity>();
