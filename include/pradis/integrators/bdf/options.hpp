@@ -69,8 +69,9 @@ struct bdf_options {
   /// second-order form of every other DOF).
   bool rotation_rates = false;
   /// The kept Newton matrix is turned with the rotational nodes: a solve with
-  /// the factorisation made at the orientations q0 maps the node's rows and
-  /// columns from q0 to the current orientations (docs/bdf.md, "Newton";
+  /// the factorisation made at the orientations q0 maps the node's entries of
+  /// the solution (its columns) from q0 to the current orientations; its rows,
+  /// global moments and the norm equation, do not turn (docs/bdf.md, "Newton";
   /// rotated_jacobian.hpp). false: used as it is.
   bool rotated_jacobian = true;
 
