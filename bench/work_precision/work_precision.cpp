@@ -11,7 +11,8 @@
 // control and with fixed steps, the BDF driver ("BDF"), on topx and chain the
 // BDF driver in its plain index-3 form ("BDF-index3"), and on the free body, top and
 // topx with the rate form ("BDF-rates") and with the kept Newton matrix not turned
-// ("BDF-unturned"). Tolerance sweeps (rtol = atol):
+// ("BDF-unturned"), and on the free body with it turned in the global frame only
+// ("BDF-global"). Tolerance sweeps (rtol = atol):
 // the one-step schemes 1e-2 .. 1e-7 and odeint and Simbody 1e-3 .. 1e-10, one per
 // decade; pradis's BDF (1e-2 .. 1e-10) and IDA and CVODE (1e-3 .. 1e-10), three per
 // decade.
@@ -1156,6 +1157,9 @@ struct bench {
         pradis_sweeps(pb, bdf_method{{.rotation_rates = true}}, "BDF-rates", false);
         pradis_sweeps(pb, bdf_method{{.rotated_jacobian = false}}, "BDF-unturned", false);
       }
+      // The free body's node is the one of the three whose elements all turn with it:
+      // BDF turns its kept matrix in the body frame, this series in the global frame.
+      if (pb.name == "freebody") pradis_sweeps(pb, bdf_method{{.body_frame = false}}, "BDF-global", false);
       peers(pb);
     }
     return true;

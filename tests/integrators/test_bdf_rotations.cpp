@@ -209,11 +209,16 @@ TEST_SUITE("integrators/bdf") {
     struct equations {  // DOF d is equation d - 1
       int equation_of(int d) const { return d - 1; }
     };
-    rotation_node_record node;
-    node.dofs = {1, 2, 3, 4};
+    // A node with a global moment source (M3) on it: turned in the global frame.
+    model<elements::spatial_torque> m;
+    const rotation_node node = m.add_rotation_node("r");
+    m.add<elements::spatial_torque>("m", elements::spatial_torque::example(), node.q1, node.q2, node.q3);
+    REQUIRE(node.q1.index == 1);
+    REQUIRE(node.q4.index == 4);
     bdf_detail::rotated_jacobian turned;
-    turned.build({node}, equations{}, true);
+    turned.build(m, equations{}, true, true);
     REQUIRE(!turned.empty());
+    CHECK(turned.body_frame_nodes() == 0);
     global_state s;
     s.resize(5);
     const spatial::quaternion q0(0.2, -0.4, 0.1, 0.9), q(-0.5, 0.3, 0.6, 0.7);  // not unit
@@ -229,8 +234,114 @@ TEST_SUITE("integrators/bdf") {
     CHECK((spatial::global_angular_velocity(q, y) - spatial::global_angular_velocity(q0, x)).norm() < 1e-14);
     CHECK(std::abs(q.dot(y) / q.squaredNorm() - q0.dot(x) / q0.squaredNorm()) < 1e-15);
     // Not enabled: no node.
-    turned.build({node}, equations{}, false);
+    turned.build(m, equations{}, false, true);
     CHECK(turned.empty());
+  }
+
+  TEST_CASE("turned Newton matrix: in the body frame it is BODY3's exact velocity and acceleration blocks") {
+    // BODY3 with its centre of mass on the node: N = R(q) (J alpha_b + omega_b x J omega_b),
+    // so at two orientations q0, q with the same body rates (omega_b, r) and their
+    // derivatives, its blocks C = dN/dq' and M = dN/dq'' satisfy
+    //     R(q0) R(q)^T B(q) S_b^-1 = B(q0),   S_b^-1 = (G(q)^T G(q0) + q q0^T) / s0,
+    // what the turned solve assumes (rotated_jacobian.hpp). The inertia is asymmetric
+    // with products, and the norms of q0 and q differ. In the global frame the same
+    // identity fails for this body.
+    using elements::rigid_body;
+    const rigid_body body({1.5, 2.0, 1.0, 0.6, 0.1, -0.05, 0.08, 0, 0, 0});
+    REQUIRE(body.body_fixed_flows());
+    model<rigid_body> m;
+    const std::vector<dof> x = m.add_dofs(3, "x");
+    const rotation_node node = m.add_rotation_node("r");
+    m.add<rigid_body>("body", body.p, x[0], x[1], x[2], node);
+    REQUIRE(node.q1.index == 4);
+    REQUIRE(node.q4.index == 7);
+    struct equations {  // DOF d is equation d - 1
+      int equation_of(int d) const { return d - 1; }
+    };
+    const bdf_detail::node_rates w{{0.7, -1.3, 2.1}, 0.05}, wd{{-0.4, 0.9, 0.3}, -0.02};
+    auto blocks = [&](const spatial::quaternion& q) {
+      local_input<rigid_body> in;
+      const spatial::quaternion qd = 0.5 * (spatial::g_matrix(q).transpose() * w.w) + w.r * q;
+      in.u.segment<4>(3) = q;
+      in.v.segment<4>(3) = qd;
+      in.a.segment<4>(3) = bdf_detail::acceleration_of(q, qd, w, wd);
+      local_output<rigid_body> out;
+      element_context ctx("BODY3", "body");
+      std::array<double, 7> work{};
+      ctx.work = work;
+      body.evaluate(in, out, ctx);
+      return std::pair<Eigen::Matrix<double, 3, 4>, Eigen::Matrix<double, 3, 4>>{out.C.block<3, 4>(3, 3),
+                                                                                 out.M.block<3, 4>(3, 3)};
+    };
+    const spatial::quaternion q0(0.2, -0.4, 0.1, 0.9), q(-0.5, 0.3, 0.6, 0.7);
+    const auto [c0, m0] = blocks(q0);
+    const auto [c1, m1] = blocks(q);
+    auto worst = [&](bool body_frame) {
+      bdf_detail::rotated_jacobian turned;
+      turned.build(m, equations{}, true, body_frame);
+      REQUIRE(turned.body_frame_nodes() == (body_frame ? 1 : 0));
+      global_state s;
+      s.resize(8);
+      for (int j = 0; j < 4; ++j) s.u(j + 4) = q0(j);
+      turned.set_reference(s);
+      for (int j = 0; j < 4; ++j) s.u(j + 4) = q(j);
+      double err = 0;
+      for (const auto& [b0, b1] : {std::pair{c0, c1}, std::pair{m0, m1}}) {
+        for (int j = 0; j < 4; ++j) {
+          std::vector<double> v(7, 0.0);
+          v[static_cast<std::size_t>(3 + j)] = 1;
+          turned.from_reference(s, v);  // S^-1 e_j on the node's entries
+          const Eigen::Vector3d y = b1 * Eigen::Map<const Eigen::Vector4d>(v.data() + 3);
+          std::vector<double> rows(7, 0.0);
+          for (int k = 0; k < 3; ++k) rows[static_cast<std::size_t>(3 + k)] = y(k);
+          turned.to_reference(s, rows);  // R(q0) R(q)^T on the moment rows
+          const Eigen::Vector3d turned_col = Eigen::Map<const Eigen::Vector3d>(rows.data() + 3);
+          err = std::max(err, (turned_col - b0.col(j)).norm() / b0.norm());
+        }
+      }
+      return err;
+    };
+    const double body_err = worst(true), global_err = worst(false);
+    MESSAGE("relative defect of the turned blocks: body frame " << body_err << ", global frame " << global_err);
+    CHECK(body_err < 1e-13);
+    CHECK(global_err > 1e-2);
+  }
+
+  TEST_CASE("turned Newton matrix: which nodes are turned in their body frame") {
+    // A node turns in its body frame when every element on it has body-fixed flows
+    // (core/element.hpp, HasBodyFixedFlows): BODY3 with its centre of mass on the
+    // node, M3B, ROT0 (no flow). A global moment source (M3), an offset centre of
+    // mass or a joint keep the global frame.
+    using namespace elements;
+    using M = model<rigid_body, initial_rotation, body_torque, spatial_torque, spherical_joint>;
+    auto body = [](M& m, rigid_body::parameters p) {
+      const std::vector<dof> x = m.add_dofs(3, "x");
+      const rotation_node r = m.add_rotation_node();
+      m.add<rigid_body>("", p, x[0], x[1], x[2], r);
+      return std::pair{x, r};
+    };
+    const rigid_body::parameters centred{1.0, 2.0, 1.0, 2.0 / 3, 0, 0, 0, 0, 0, 0};
+    rigid_body::parameters offset = centred;
+    offset.cy = 0.1;
+    M m;
+    const rotation_node r0 = body(m, centred).second;  // BODY3 alone
+    const rotation_node r1 = body(m, centred).second;  // + ROT0 + M3B
+    m.add<initial_rotation>("", initial_rotation::example(), r1);
+    m.add<body_torque>("", body_torque::example(), r1);
+    const rotation_node r2 = body(m, offset).second;  // offset centre of mass
+    const rotation_node r3 = body(m, centred).second;  // + M3 (global axes)
+    m.add<spatial_torque>("", spatial_torque::example(), r3.q1, r3.q2, r3.q3);
+    const auto [x4, r4] = body(m, centred);  // + SPH3 to the ground
+    const dof g = m.ground();
+    m.add<spherical_joint>("", spherical_joint::example(), g, g, g, g, g, g, x4[0], x4[1], x4[2], r4);
+    const rotation_node r5 = m.add_rotation_node("free");  // no element
+    const std::vector<char> fixed = bdf_detail::body_fixed_nodes(m);
+    REQUIRE(fixed.size() == m.rotation_nodes().size());
+    for (const auto& [r, expected] : {std::pair{r0, true}, std::pair{r1, true}, std::pair{r2, false},
+                                      std::pair{r3, false}, std::pair{r4, false}, std::pair{r5, false}}) {
+      CAPTURE(r.index);
+      CHECK((fixed.at(static_cast<std::size_t>(r.index)) != 0) == expected);
+    }
   }
 
   TEST_CASE("turned Newton matrix: the spinning top on SPH3X needs fewer Newton iterations and steps") {

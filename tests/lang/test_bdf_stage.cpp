@@ -134,6 +134,12 @@ TEST_SUITE("lang/bdf") {
     CHECK_FALSE(a->bdf_ptr()->options().rotated_jacobian);
     CHECK(a->bdf_ptr()->options().rotation_rates);
     CHECK(a->bdf_ptr()->options().max_order == 5);
+    // TURN = 1: turned in the global frame only; TURN = 2 (the default): body frames too.
+    auto turn1 = lang_test::run(oscillator("    A 'BDF (END=0.5, OUT=0.1, SMAX=0.1, DRLTX=1E-9, TURN=1)\n"));
+    CHECK(turn1->bdf_ptr()->options().rotated_jacobian);
+    CHECK_FALSE(turn1->bdf_ptr()->options().body_frame);
+    auto turn2 = lang_test::run(oscillator("    A 'BDF (END=0.5, OUT=0.1, SMAX=0.1, DRLTX=1E-9, TURN=2)\n"));
+    CHECK(turn2->bdf_ptr()->options() == bdf_options{});
     // The oscillator has no rotational node and no exact joint: the keys change nothing
     // of its motion (exact solution as in the first test).
     CHECK(max_error(*s) < 1e-6);
@@ -163,9 +169,9 @@ TEST_SUITE("lang/bdf") {
     CHECK(e.find("key LQBAND belongs to BDF, not to GALPHA") != std::string::npos);
     e = lang_test::error_of(oscillator("    Calc 'HHT (END=1, INDEX2=0)\n"));
     CHECK(e.find("key INDEX2 belongs to BDF, not to HHT") != std::string::npos);
-    e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, TURN=2)\n"));
+    e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, TURN=3)\n"));
     CHECK(e.find("test.prd:13:") != std::string::npos);
-    CHECK(e.find("TURN must be a whole number from 0 to 1") != std::string::npos);
+    CHECK(e.find("TURN must be a whole number from 0 to 2") != std::string::npos);
     e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, RATES=-1)\n"));
     CHECK(e.find("test.prd:13:") != std::string::npos);
     CHECK(e.find("RATES must be a whole number from 0 to 1") != std::string::npos);

@@ -83,6 +83,28 @@ constexpr auto rotation_slots_of() {
     return std::array<rotation_slot, 0>{};
 }
 
+/// Whether E says if its flows turn with its rotational nodes: an optional
+/// member `bool body_fixed_flows() const`. True states that on every rotational
+/// slot the element's moments are R(q) times a function of the body angular
+/// velocity and acceleration (and of t) alone, with no entry in other DOFs' rows
+/// or columns that depends on the node: as for a rigid body whose centre of mass
+/// is its reference point, a body-fixed torque, or an element with no flow. The
+/// BDF driver then keeps the Newton matrix of a node whose every element says so
+/// in the node's body frame (docs/bdf.md, "Newton"). Without the member: false.
+template <class E>
+concept HasBodyFixedFlows = requires(const E& e) {
+  { e.body_fixed_flows() } -> std::convertible_to<bool>;
+};
+
+/// e.body_fixed_flows() if E declares it, else false.
+template <class E>
+bool body_fixed_flows_of(const E& e) {
+  if constexpr (HasBodyFixedFlows<E>)
+    return static_cast<bool>(e.body_fixed_flows());
+  else
+    return false;
+}
+
 /// Checks the rotational-node declaration of an element with EXT = ext and ENT = ent;
 /// nullptr when valid, otherwise one sentence.
 template <std::size_t K>

@@ -187,7 +187,9 @@ class action_checker : public model_builder {
         } else if (k == "INDEX2") {
           s.bdf_opt.stabilised_index2 = whole(v, "INDEX2", 0, 1) == 1;
         } else if (k == "TURN") {
-          s.bdf_opt.rotated_jacobian = whole(v, "TURN", 0, 1) == 1;
+          const int turn = whole(v, "TURN", 0, 2);
+          s.bdf_opt.rotated_jacobian = turn > 0;
+          s.bdf_opt.body_frame = turn == 2;
         } else if (k == "RATES") {
           s.bdf_opt.rotation_rates = whole(v, "RATES", 0, 1) == 1;
         } else if (k == "OPTIM")

@@ -41,7 +41,8 @@ inline const std::vector<program_info>& integration_programs() {
        "LQBAND - a rotational node whose quaternion norm left [1 - LQBAND, 1 + LQBAND] is scaled back to 1 after a "
        "step (exact); 0: every step, >= 0.1: never (0.01)\n"
        "INDEX2 - exact joints: 1 stabilised index-2 form, 0 plain index-3 form (1)\n"
-       "TURN - 1: the kept Newton matrix is turned with the rotational nodes, 0: used as factorised (1)\n"
+       "TURN - the kept Newton matrix turned with the rotational nodes: 2 in the body frame of nodes whose elements "
+       "all turn with them (BODY3 centred, M3B), else global; 1 global frame only; 0 not turned (2)\n"
        "RATES - rotational nodes: 1 body rates in the BDF history (more accurate with fixed steps), 0 q' (0)\n"
        "BDF always controls its error with DRLTX and DABSX (and CONTROL); "
        "DABSU, DRLTU, DABSI, DRLTI, SECOND and PREDICT do not apply\n"},

@@ -94,6 +94,8 @@ struct initial_rotation_t {
       ctx.work[static_cast<std::size_t>(k)] = q(k);
     }
   }
+  /// It has no flow, so nothing of it turns against its node (core/element.hpp, HasBodyFixedFlows).
+  bool body_fixed_flows() const noexcept { return true; }
   void evaluate(const local_input<initial_rotation>&, local_output<initial_rotation>& out, element_context&) const {
     if (out.want_jacobian) out.K.setZero();
   }

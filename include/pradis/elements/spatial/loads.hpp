@@ -218,6 +218,8 @@ struct body_torque_t {
     out.K.setZero();
     out.K.block<3, 4>(0, 0) = skew(n) * ((2.0 / s) * e_matrix(q));
   }
+  /// Its moment -R(q) n(t) turns with its node (core/element.hpp, HasBodyFixedFlows).
+  bool body_fixed_flows() const noexcept { return true; }
   /// States the checks may use: the quaternion norm is not near zero.
   bool admissible(const local_input<body_torque>& in) const { return in.u.head<4>().norm() > 0.2; }
 };

@@ -96,6 +96,11 @@ struct rigid_body_t {
   /// The centre of mass from the reference point in the body frame.
   spatial::vec3 offset() const { return {p.cx, p.cy, p.cz}; }
 
+  /// Its moments turn with its rotational node when the centre of mass is the
+  /// reference point: N = R(q) (J alpha_b + omega_b x J omega_b) and F = m x''
+  /// (core/element.hpp, HasBodyFixedFlows).
+  bool body_fixed_flows() const noexcept { return p.cx == 0 && p.cy == 0 && p.cz == 0; }
+
   /// NEWINT: m >= 0, J symmetric positive definite, finite offset (code 100).
   void new_integration(element_context& ctx) const {
     if (!(p.m >= 0) || !std::isfinite(p.m)) ctx.invalid_parameter("mass m = " + to_text(p.m) + " must be finite and >= 0");

@@ -319,7 +319,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       yp(ne + i) = s_.a(d);
     }
     rates_.build(m_.rotation_nodes(), asm_, bopt_.rotation_rates);
-    turned_.build(m_.rotation_nodes(), asm_, bopt_.rotated_jacobian);
+    turned_.build(m_, asm_, bopt_.rotated_jacobian, bopt_.body_frame);
     rates_.rates(s_, ne, y, &yp);
     bdf_detail::mark_constraints(
         asm_, index3_, bopt_.stabilised_index2 && !bdf_detail::driven_constraint(m_, index3_, prescribed_), index2_,

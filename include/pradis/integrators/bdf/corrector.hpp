@@ -26,9 +26,10 @@
 ///   of the constraint elements for G (the factorisation is still kept).
 /// - with a rotated_jacobian, the solution of the kept factorisation is turned
 ///   from the orientations of the factorisation to the current ones on the
-///   entries of the rotational nodes (rotated_jacobian.hpp); with a rate_form,
-///   the accelerations and corrections of its nodes go through their rates
-///   (rate_form.hpp).
+///   entries of the rotational nodes, and for a node in its body frame the
+///   right-hand side's moment rows before the solve (rotated_jacobian.hpp);
+///   with a rate_form, the accelerations and corrections of its nodes go
+///   through their rates (rate_form.hpp).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -172,12 +173,15 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
           refresh = false;
         }
         for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
-        if (st) {
-          stabilised_rows(as, s, *st, fresh_g, c, mem.c_jac, rhs);
-          solve_both(solver, st->rhs, rhs);
-        } else {
-          solver.solve(rhs);
+        if (st) stabilised_rows(as, s, *st, fresh_g, c, mem.c_jac, rhs);
+        if (rj) {
+          rj->to_reference(s, rhs);
+          if (st) rj->to_reference(s, st->rhs);
         }
+        if (st)
+          solve_both(solver, st->rhs, rhs);
+        else
+          solver.solve(rhs);
         if (rj) {
           rj->from_reference(s, rhs);
           if (st) rj->from_reference(s, st->rhs);

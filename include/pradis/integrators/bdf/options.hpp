@@ -74,6 +74,12 @@ struct bdf_options {
   /// global moments and the norm equation, do not turn (docs/bdf.md, "Newton";
   /// rotated_jacobian.hpp). false: used as it is.
   bool rotated_jacobian = true;
+  /// With rotated_jacobian: a node whose every element has body-fixed flows (a
+  /// rigid body with its centre of mass on the node, body-fixed torques:
+  /// core/element.hpp, HasBodyFixedFlows) is turned in its body frame, rows and
+  /// columns, which fits the inertia of any tumbling body; the others in the
+  /// global frame (docs/bdf.md, "Newton"). false: every node in the global frame.
+  bool body_frame = true;
 
   /// Equal options (the language keeps a BDF driver across stages whose options are equal).
   bool operator==(const bdf_options&) const = default;

@@ -17,8 +17,22 @@
 /// such as a joint at a point of the body's spin axis and the inertia of a body
 /// symmetric about that axis. The top spinning at 30 rad/s on its exact joint
 /// turns by 0.15 rad in a step of 5 ms; the unturned kept matrix slowed Newton,
-/// whose inexact solutions then held BDF at orders 2-3. Used for the nodes whose
-/// four DOFs are free equations. Never allocates after build().
+/// whose inexact solutions then held BDF at orders 2-3.
+///
+/// The body frame. When every element on a node has body-fixed flows
+/// (core/element.hpp, HasBodyFixedFlows: a rigid body whose centre of mass is
+/// the node's point, body-fixed torques), its rows are R(q) times moments in
+/// body axes and its columns act through the body angular velocity
+/// omega_b = (2/s) G(q) q'. Then J ~ T T0^T J0 S_b with T = R(q) on the moment
+/// rows and S_b^-1 = (G(q)^T G(q0) + q q0^T) / s0: the node's moment rows of the
+/// right-hand side are turned by R(q0) R(q)^T before the solve and its entries of
+/// the solution by S_b^-1 after it. This is exact for the inertia of any rigid
+/// body, which depends on omega_b alone: a body tumbling about changing axes
+/// keeps Newton's rate. A joint in the ground frame does not turn with the body,
+/// so a node with any other element keeps the global frame.
+///
+/// Used for the nodes whose four DOFs are free equations. Never allocates after
+/// build().
 
 #include <Eigen/Core>
 #include <array>
@@ -36,12 +50,22 @@ namespace pradis::bdf_detail {
 /// q0 of the factorisation (see the file comment).
 class rotated_jacobian {
  public:
-  /// Selects the nodes whose four DOFs are free equations (enabled: else none).
-  template <class Assembler>
-  void build(const std::vector<rotation_node_record>& nodes, const Assembler& as, bool enabled) {
+  /// Selects the nodes of m whose four DOFs are free equations of `as`
+  /// (enabled: else none); with body_frame, those whose elements all have
+  /// body-fixed flows (body_fixed_nodes) are turned in their body frame.
+  template <class Model, class Assembler>
+  void build(const Model& m, const Assembler& as, bool enabled, bool body_frame) {
     nodes_.clear();
     if (!enabled) return;
-    for (const free_rotation_node& n : free_rotation_nodes(nodes, as)) nodes_.push_back({n.dof, n.eq});
+    const std::vector<char> fixed = body_frame ? body_fixed_nodes(m) : std::vector<char>{};
+    for (const free_rotation_node& n : free_rotation_nodes(m.rotation_nodes(), as))
+      nodes_.push_back({n.dof, n.eq, body_frame && fixed[static_cast<std::size_t>(n.node)] != 0});
+  }
+  /// The number of nodes turned in their body frame.
+  int body_frame_nodes() const noexcept {
+    int k = 0;
+    for (const entry& e : nodes_) k += e.body ? 1 : 0;
+    return k;
   }
   /// No node is handled (disabled, or no rotational node with four free DOFs).
   bool empty() const noexcept { return nodes_.empty(); }
@@ -50,7 +74,17 @@ class rotated_jacobian {
   void set_reference(const global_state& s) {
     for (entry& e : nodes_) e.q0 = get(s.u, e);
   }
-  /// S^-1 on the node entries of a solution of J0 (after the solve).
+  /// R(q0) R(q)^T on the moment rows of a right-hand side of the nodes turned
+  /// in their body frame (before the solve with J0).
+  void to_reference(const global_state& s, std::span<double> b) const {
+    for (const entry& e : nodes_) {
+      if (!e.body) continue;
+      const spatial::vec3 m = spatial::rotation_matrix(e.q0) * (spatial::rotation_matrix(get(s.u, e)).transpose() *
+                                                                spatial::vec3(at(b, e, 0), at(b, e, 1), at(b, e, 2)));
+      for (int j = 0; j < 3; ++j) at(b, e, j) = m(j);
+    }
+  }
+  /// S^-1 (S_b^-1 in the body frame) on the node entries of a solution of J0 (after the solve).
   void from_reference(const global_state& s, std::span<double> x) const {
     for (const entry& e : nodes_) apply(e, s, x);
   }
@@ -59,20 +93,25 @@ class rotated_jacobian {
   struct entry {
     std::array<int, 4> dof{};  // global DOFs of q1..q4
     std::array<int, 4> eq{};   // their equations
+    bool body = false;         // turned in the body frame
     spatial::quaternion q0 = spatial::identity();
   };
+  static double& at(std::span<double> x, const entry& e, int j) {
+    return x[static_cast<std::size_t>(e.eq[static_cast<std::size_t>(j)])];
+  }
   template <class V>
   static spatial::quaternion get(const V& x, const entry& e) {
     return {x(e.dof[0]), x(e.dof[1]), x(e.dof[2]), x(e.dof[3])};
   }
   static void apply(const entry& e, const global_state& s, std::span<double> x) {
     const spatial::quaternion q = get(s.u, e);
-    const Eigen::Matrix4d m =
-        (spatial::e_matrix(q).transpose() * spatial::e_matrix(e.q0) + q * e.q0.transpose()) / e.q0.squaredNorm();
+    const spatial::mat34 a = e.body ? spatial::g_matrix(q) : spatial::e_matrix(q);
+    const spatial::mat34 a0 = e.body ? spatial::g_matrix(e.q0) : spatial::e_matrix(e.q0);
+    const Eigen::Matrix4d m = (a.transpose() * a0 + q * e.q0.transpose()) / e.q0.squaredNorm();
     spatial::quaternion v;
-    for (int j = 0; j < 4; ++j) v(j) = x[static_cast<std::size_t>(e.eq[j])];
+    for (int j = 0; j < 4; ++j) v(j) = at(x, e, j);
     const spatial::quaternion r = m * v;
-    for (int j = 0; j < 4; ++j) x[static_cast<std::size_t>(e.eq[j])] = r(j);
+    for (int j = 0; j < 4; ++j) at(x, e, j) = r(j);
   }
   std::vector<entry> nodes_;
 };
