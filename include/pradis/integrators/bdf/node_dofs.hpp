@@ -72,7 +72,8 @@ std::vector<char> body_fixed_nodes(const Model& m) {
         if (it == node_of.end()) continue;
         const int local = static_cast<int>(k);
         bool in_slot = false;
-        for (const rotation_slot& sl : slots) in_slot = in_slot || local == sl.q4 || (local >= sl.q1 && local < sl.q1 + 3);
+        for (const rotation_slot& sl : slots)
+          in_slot = in_slot || local == sl.q4 || (local >= sl.q1 && local < sl.q1 + 3);
         seen[it->second] = 1;
         if (!(in_slot && body)) fixed[it->second] = 0;
       }
