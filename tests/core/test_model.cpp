@@ -64,7 +64,48 @@ struct table_element {
   }
 };
 
+// An element that declares itself inert (core/element.hpp, InertElement) but, to show
+// that the assembler never calls it, would write a flow and a Jacobian entry.
+struct claims_inert {
+  static constexpr pradis::passport passport{.name = "INERT", .ext = 1, .par = 0, .adr = 1, .ign = 23};
+  static constexpr element_help help{.title = "t", .name = "t", .field = "t", .dofs = "1", .parameters = "",
+                                     .work = "", .special = "none"};
+  struct parameters {};
+  parameters p;
+  explicit claims_inert(parameters) {}
+  static claims_inert from_parameters(std::span<const double>) { return claims_inert({}); }
+  static constexpr bool inert = true;
+  void evaluate(const local_input<claims_inert>&, local_output<claims_inert>& out, element_context&) const {
+    out.f(0) = 1.0;
+    if (out.want_jacobian) out.K(0, 0) = 1.0;
+  }
+};
+
 }  // namespace
+
+TEST_CASE("the assembler skips inert elements (initial conditions): no flow, no Jacobian entry") {
+  // X0, V0 and ROT0 declare themselves inert; claims_inert would write 1 if it were called.
+  static_assert(InertElement<elements::initial_displacement> && InertElement<elements::initial_velocity> &&
+                InertElement<elements::initial_rotation> && InertElement<claims_inert>);
+  static_assert(!InertElement<point_mass> && !InertElement<linear_spring>);
+  using M = model<point_mass, linear_spring, claims_inert>;
+  M m;
+  const dof a = m.add_dof("a");
+  m.add<point_mass>("m", {2.0}, a);
+  m.add<linear_spring>("k", {5.0}, a, m.ground());
+  m.add<claims_inert>("i", {}, a);
+  std::vector<char> prescribed(static_cast<std::size_t>(m.dof_count()), 0);
+  assembler<M> as;
+  as.build(m, prescribed);
+  global_state s;
+  s.resize(m.dof_count());
+  s.u(a.index) = 0.1;
+  s.a(a.index) = 0.3;
+  as.evaluate(m, s, jacobian_coefficients{0.5, 1.0, 4.0}, call_info{0.0, 1e-3, 1, 0, true, nullptr});
+  CHECK(as.residual()(a.index) == doctest::Approx(5.0 * 0.1 + 2.0 * 0.3));  // the spring and the mass alone
+  const int e = as.equation_of(a.index);
+  CHECK(as.values()[static_cast<std::size_t>(as.pattern().find(e, e))] == doctest::Approx(0.5 * 5.0 + 4.0 * 2.0));
+}
 
 TEST_SUITE("core/model") {
   TEST_CASE("an element with ENT = 1 gets a hidden internal DOF allocated by the model") {

@@ -55,6 +55,18 @@ void check_one_element() {
     in.t = 1.0 + uni(rng);
     if constexpr (requires(const E& e) { e.admissible(in); })
       if (!chk.element().admissible(in)) continue;
+    if constexpr (InertElement<E>) {  // the assembler skips it: it must write nothing
+      local_output<E> out;
+      element_context ctx(p.name, "inert");
+      std::vector<double> work(static_cast<std::size_t>(p.wrk));
+      ctx.work = work;
+      chk.element().evaluate(in, out, ctx);
+      CHECK(out.f.isZero(0.0));
+      if constexpr (element_traits<E>::has_k) CHECK(out.K.isZero(0.0));
+      if constexpr (element_traits<E>::has_c) CHECK(out.C.isZero(0.0));
+      if constexpr (element_traits<E>::has_m) CHECK(out.M.isZero(0.0));
+      CHECK(ctx.recommended_step == std::numeric_limits<double>::infinity());
+    }
     auto r = chk.check(in);
     ++checked;
     if (!r.ok) {

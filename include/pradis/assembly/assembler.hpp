@@ -247,6 +247,7 @@ class assembler<model<Es...>> {
                      element_context& ctx, const scatter_map<E>& map, std::size_t type_index) {
     using tr = element_traits<E>;
     constexpr int n = tr::n;
+    if constexpr (InertElement<E>) return;  // no flow, no Jacobian entry (core/element.hpp)
     auto& vec = m.template instances<E>();
     if (vec.empty()) return;  // most of library_model's types in a small model: no set-up for them
     local_input<E> li;

@@ -83,6 +83,16 @@ constexpr auto rotation_slots_of() {
     return std::array<rotation_slot, 0>{};
 }
 
+/// Whether E is inert: `static constexpr bool inert = true` states that its
+/// evaluate() writes no flow and no Jacobian entry at any state and has no
+/// other effect, as for an initial-condition element, which acts through
+/// zero_step() alone. The assembler then skips its instances in every
+/// evaluation; the all-elements test checks the claim at random states.
+template <class E>
+concept InertElement = requires {
+  { E::inert } -> std::convertible_to<bool>;
+} && E::inert;
+
 /// Whether E says if its flows turn with its rotational nodes: an optional
 /// member `bool body_fixed_flows() const`. True states that on every rotational
 /// slot the element's moments are R(q) times a function of the body angular

@@ -46,6 +46,8 @@ struct initial_displacement_t {
     iv.set_displacement(0, p.u0);
     ctx.work[0] = p.u0;
   }
+  /// No flow and no Jacobian entry: the assembler skips it (core/element.hpp, InertElement).
+  static constexpr bool inert = true;
   void evaluate(const local_input<initial_displacement>&, local_output<initial_displacement>& out,
                 element_context&) const {
     if (out.want_jacobian) out.K(0, 0) = 0.0;
@@ -86,6 +88,8 @@ struct initial_velocity_t {
     iv.set_velocity(0, p.v0);
     ctx.work[0] = p.v0;
   }
+  /// No flow and no Jacobian entry: the assembler skips it (core/element.hpp, InertElement).
+  static constexpr bool inert = true;
   void evaluate(const local_input<initial_velocity>&, local_output<initial_velocity>& out, element_context&) const {
     if (out.want_jacobian) out.K(0, 0) = 0.0;
   }

@@ -96,6 +96,8 @@ struct initial_rotation_t {
   }
   /// It has no flow, so nothing of it turns against its node (core/element.hpp, HasBodyFixedFlows).
   bool body_fixed_flows() const noexcept { return true; }
+  /// No flow and no Jacobian entry after the zero step: the assembler skips it (core/element.hpp, InertElement).
+  static constexpr bool inert = true;
   void evaluate(const local_input<initial_rotation>&, local_output<initial_rotation>& out, element_context&) const {
     if (out.want_jacobian) out.K.setZero();
   }

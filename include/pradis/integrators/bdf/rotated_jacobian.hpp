@@ -72,15 +72,18 @@ class rotated_jacobian {
 
   /// Records the orientations of the factorised matrix (after a factorisation at s).
   void set_reference(const global_state& s) {
-    for (entry& e : nodes_) e.q0 = get(s.u, e);
+    for (entry& e : nodes_) {
+      e.q0 = get(s.u, e);
+      if (e.body) e.r0 = spatial::rotation_matrix(e.q0);
+    }
   }
   /// R(q0) R(q)^T on the moment rows of a right-hand side of the nodes turned
   /// in their body frame (before the solve with J0).
   void to_reference(const global_state& s, std::span<double> b) const {
     for (const entry& e : nodes_) {
       if (!e.body) continue;
-      const spatial::vec3 m = spatial::rotation_matrix(e.q0) * (spatial::rotation_matrix(get(s.u, e)).transpose() *
-                                                                spatial::vec3(at(b, e, 0), at(b, e, 1), at(b, e, 2)));
+      const spatial::vec3 m =
+          e.r0 * (spatial::rotation_matrix(get(s.u, e)).transpose() * spatial::vec3(at(b, e, 0), at(b, e, 1), at(b, e, 2)));
       for (int j = 0; j < 3; ++j) at(b, e, j) = m(j);
     }
   }
@@ -95,6 +98,7 @@ class rotated_jacobian {
     std::array<int, 4> eq{};   // their equations
     bool body = false;         // turned in the body frame
     spatial::quaternion q0 = spatial::identity();
+    spatial::mat3 r0 = spatial::mat3::Identity();  // R(q0), body frame only
   };
   static double& at(std::span<double> x, const entry& e, int j) {
     return x[static_cast<std::size_t>(e.eq[static_cast<std::size_t>(j)])];
