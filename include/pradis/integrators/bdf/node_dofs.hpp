@@ -10,12 +10,11 @@
 #include <array>
 #include <cstddef>
 #include <type_traits>
-#include <utility>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "pradis/core/element.hpp"
-
 #include "pradis/model/handles.hpp"
 
 namespace pradis::bdf_detail {

@@ -82,8 +82,8 @@ class rotated_jacobian {
   void to_reference(const global_state& s, std::span<double> b) const {
     for (const entry& e : nodes_) {
       if (!e.body) continue;
-      const spatial::vec3 m =
-          e.r0 * (spatial::rotation_matrix(get(s.u, e)).transpose() * spatial::vec3(at(b, e, 0), at(b, e, 1), at(b, e, 2)));
+      const spatial::vec3 v(at(b, e, 0), at(b, e, 1), at(b, e, 2));
+      const spatial::vec3 m = e.r0 * (spatial::rotation_matrix(get(s.u, e)).transpose() * v);
       for (int j = 0; j < 3; ++j) at(b, e, j) = m(j);
     }
   }
