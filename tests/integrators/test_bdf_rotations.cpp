@@ -276,8 +276,8 @@ TEST_SUITE("integrators/bdf") {
                                                                                  out.M.block<3, 4>(3, 3)};
     };
     const spatial::quaternion q0(0.2, -0.4, 0.1, 0.9), q(-0.5, 0.3, 0.6, 0.7);
-    const auto [c0, m0] = blocks(q0);
-    const auto [c1, m1] = blocks(q);
+    // Not structured bindings: the lambda below captures them (clang 14 refuses that).
+    const auto at_q0 = blocks(q0), at_q = blocks(q);
     auto worst = [&](bool body_frame) {
       bdf_detail::rotated_jacobian turned;
       turned.build(m, equations{}, true, body_frame);
@@ -288,7 +288,7 @@ TEST_SUITE("integrators/bdf") {
       turned.set_reference(s);
       for (int j = 0; j < 4; ++j) s.u(j + 4) = q(j);
       double err = 0;
-      for (const auto& [b0, b1] : {std::pair{c0, c1}, std::pair{m0, m1}}) {
+      for (const auto& [b0, b1] : {std::pair{at_q0.first, at_q.first}, std::pair{at_q0.second, at_q.second}}) {
         for (int j = 0; j < 4; ++j) {
           std::vector<double> v(7, 0.0);
           v[static_cast<std::size_t>(3 + j)] = 1;
@@ -375,10 +375,11 @@ TEST_SUITE("integrators/bdf") {
     const rotation_node r5 = m.add_rotation_node("free");  // no element
     const std::vector<char> fixed = bdf_detail::body_fixed_nodes(m);
     REQUIRE(fixed.size() == m.rotation_nodes().size());
-    for (const auto& [r, expected] : {std::pair{r0, true}, std::pair{r1, true}, std::pair{r2, false},
+    for (const auto& node_expected : {std::pair{r0, true}, std::pair{r1, true}, std::pair{r2, false},
                                       std::pair{r3, false}, std::pair{r4, false}, std::pair{r5, false}}) {
-      CAPTURE(r.index);
-      CHECK((fixed.at(static_cast<std::size_t>(r.index)) != 0) == expected);
+      const int index = node_expected.first.index;
+      CAPTURE(index);
+      CHECK((fixed.at(static_cast<std::size_t>(index)) != 0) == node_expected.second);
     }
   }
 
