@@ -4,13 +4,16 @@
 // t = 10.3 s, against the exact solution
 // u = exp(-z w t) (cos wd t + z w / wd sin wd t), wd = w sqrt(1 - z^2).
 // Prints, per tolerance DRLTX = DABSX, the error at the end, the steps and the
-// model evaluations of both drivers.
+// model evaluations of both drivers; then one run whose first half is Newmark's
+// and whose second half is BDF's, the BDF driver taking over Newmark's state in
+// memory (continue_from).
 //
 // Usage: bdf_oscillator [--quick]   (--quick: two tolerances only)
 
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -24,6 +27,12 @@ struct result {
   double error = 0;
   pradis::run_statistics stats;
 };
+
+/// The exact displacement and velocity at t.
+std::pair<double, double> exact(double t) {
+  const double wd = w * std::sqrt(1 - zeta * zeta), e = std::exp(-zeta * w * t);
+  return {e * (std::cos(wd * t) + zeta * w / wd * std::sin(wd * t)), -e * (w * w / wd) * std::sin(wd * t)};
+}
 
 /// Runs the oscillator with the driver Sim (bdf_simulation or simulation).
 template <template <class...> class Sim>
@@ -46,11 +55,36 @@ result run(double tol) {
   o.dabsx = tol;
   result r;
   r.stats = sim.run(o);
-  const double wd = w * std::sqrt(1 - zeta * zeta), e = std::exp(-zeta * w * end);
-  const double u = e * (std::cos(wd * end) + zeta * w / wd * std::sin(wd * end));
-  const double v = -e * (w * w / wd) * std::sin(wd * end);
+  const auto [u, v] = exact(end);
   r.error = std::max(std::abs(sim.u(x) - u), std::abs(sim.v(x) - v) / w);
   return r;
+}
+
+/// Newmark to t = 5 s, then BDF from its state (continue_from) to the end, both at tol.
+double handover(double tol) {
+  using namespace pradis;
+  using namespace pradis::elements;
+  model<point_mass, linear_spring, linear_damper, initial_displacement> m;
+  const dof x = m.add_dof("x");
+  m.add<point_mass>("m", {1.0}, x);
+  m.add<linear_spring>("k", {w * w}, x, m.ground());
+  m.add<linear_damper>("c", {2 * zeta * w}, x, m.ground());
+  m.add<initial_displacement>("x0", {1.0}, x);
+  run_options o;
+  o.end = 5.0;
+  o.smax = 0.5;
+  o.smin = 1e-12;
+  o.error_control = true;
+  o.drltx = tol;
+  o.dabsx = tol;
+  simulation first(m);
+  first.run(o);
+  bdf_simulation second(m);
+  second.continue_from(first);  // time, state, element vectors and statistics, not serialised
+  o.end = end;
+  second.run(o);
+  const auto [u, v] = exact(end);
+  return std::max(std::abs(second.u(x) - u), std::abs(second.v(x) - v) / w);
 }
 
 template <class M>
@@ -72,5 +106,7 @@ int main(int argc, char** argv) {
                 b.stats.evaluations, n.error, n.stats.steps, n.stats.evaluations);
     if (!(b.error < 1e3 * tol)) return 1;  // a smoke check for CTest
   }
-  return 0;
+  const double e = handover(1e-6);
+  std::printf("Newmark to t = 5 s, then BDF from its state (continue_from), DRLTX = 1e-6: error %.2e\n", e);
+  return e < 1e-3 ? 0 : 1;
 }

@@ -305,6 +305,80 @@ TEST_SUITE("integrators/bdf") {
     CHECK_THROWS_AS(unstarted.save_checkpoint(none), error);
   }
 
+  TEST_CASE("continue_from: a driver takes over another's state in memory, exactly as through a checkpoint") {
+    // Two drivers on one model hand the state over without a checkpoint round
+    // trip (the language's switch of scheme); the result must equal the run that
+    // continues from the saved bytes bit for bit, and the exact cosine within
+    // each method's error.
+    using osc = model<point_mass, linear_spring, initial_displacement>;
+    const auto make = [](auto& m) {
+      const dof x = m.add_dof("x");
+      m.template add<point_mass>("m", {1.0}, x);
+      m.template add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
+      m.template add<initial_displacement>("x0", {1.0}, x);
+      return x;
+    };
+    osc shared, viaf1, viaf2;
+    const dof x = make(shared), y1 = make(viaf1), y2 = make(viaf2);
+    // Newmark to 0.5 (h = 1e-4: error (w h)^2 / 24 w t ~ 1e-8), then BDF to 1.
+    simulation<osc, newmark> nm(shared, newmark{});
+    (void)nm.run({.end = 0.5, .smax = 1e-4});
+    std::stringstream nm_bytes;
+    nm.save_checkpoint(nm_bytes);
+    bdf_simulation bdf(shared);
+    bdf.continue_from(nm);
+    CHECK(bdf.time() == 0.5);
+    CHECK(bdf.statistics().steps == nm.statistics().steps);
+    run_options o = controlled(1.0, 1e-8, 0.1);
+    bdf.run(o);
+    bdf_simulation from_file(viaf1);
+    from_file.load_checkpoint(nm_bytes);
+    from_file.run(o);
+    CHECK(bdf.u(x) == from_file.u(y1));
+    CHECK(bdf.v(x) == from_file.v(y1));
+    CHECK(bdf.statistics().steps == from_file.statistics().steps);
+    CHECK(std::abs(bdf.u(x) - std::cos(osc_w * 1.0)) < 1e-6);
+
+    // Back to a one-step scheme (HHT, restarted with p = a) to 1.5.
+    simulation<osc, hht> back(shared, hht{});
+    back.continue_from(bdf);
+    back.restart_scheme();
+    std::stringstream bdf_bytes;
+    bdf.save_checkpoint(bdf_bytes);
+    simulation<osc, hht> back_file(viaf2, hht{});
+    back_file.load_checkpoint(bdf_bytes);
+    back_file.restart_scheme();
+    (void)back.run({.end = 1.5, .smax = 1e-4});
+    (void)back_file.run({.end = 1.5, .smax = 1e-4});
+    CHECK(back.u(x) == back_file.u(y2));
+    CHECK(back.v(x) == back_file.v(y2));
+    CHECK(std::abs(back.u(x) - std::cos(osc_w * 1.5)) < 2e-6);
+
+    // A driver that has not run a stage has nothing to hand over; another
+    // model's driver is refused; the taking driver is unchanged in both cases.
+    bdf_simulation unstarted(viaf1);
+    try {
+      back.continue_from(unstarted);
+      FAIL("no error");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::invalid_option);
+      CHECK(e.message().find("before the first stage") != std::string::npos);
+    }
+    model<point_mass, linear_spring, initial_displacement, linear_damper> other;
+    other.add<linear_damper>("c", {0.1}, make(other), other.ground());
+    bdf_simulation foreign(other);
+    foreign.run(controlled(0.1, 1e-6, 0.1));
+    try {
+      back.continue_from(foreign);
+      FAIL("no error");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::invalid_option);
+      CHECK(e.message().find("different model") != std::string::npos);
+    }
+    CHECK(back.time() == 1.5);
+    CHECK(back.u(x) == back_file.u(y2));
+  }
+
   TEST_CASE("a very stiff spring: large steps stay stable and damp the stiff mode") {
     // m1 = 1 on k1 = (2 pi)^2; m2 = 1e-3 on k2 = m2 (2 pi 1e5)^2 to m1 (100 kHz), undamped;
     // x1(0) = 1, x2(0) = 1.001, to t = 1.125 (a generic phase of the slow mode). Exact: modal superposition of the generalized eigenproblem

@@ -275,4 +275,19 @@ inline checkpoint_data read_checkpoint(std::istream& is, std::uint64_t fingerpri
   return c;
 }
 
+/// The checks of a driver's continue_from(): the checkpoint data `c` of a driver of a model with fingerprint `from`
+/// fits a driver of a model with fingerprint `to`, `dofs` DOFs and the pool sizes (work, old state, new state).
+/// Throws invalid_option otherwise (another model, or pools sized by other parameters).
+inline void check_handover(const checkpoint_data& c, std::uint64_t from, std::uint64_t to, int dofs,
+                           std::size_t work_size, std::size_t old_size, std::size_t new_size) {
+  if (from != to)
+    throw error(error_code::invalid_option,
+                "cannot continue from a driver of a different model (its DOFs, elements or connections differ)");
+  if (c.state.u.size() != dofs || c.work.size() != work_size || c.old_state.size() != old_size ||
+      c.new_state.size() != new_size)
+    throw error(error_code::invalid_option,
+                "cannot continue from that driver: its model's DOFs or element work and state vectors have other "
+                "sizes");
+}
+
 }  // namespace pradis

@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <concepts>
 #include <cstdint>
 #include <functional>
 #include <istream>
@@ -216,11 +217,26 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   /// Writes a checkpoint (format: checkpoint.hpp): time, potentials of all DOFs,
   /// the step-size state, the statistics and every element's work and state
   /// vectors, with the model fingerprint. Throws invalid_option before the zero step.
-  void save_checkpoint(std::ostream& os) const {
+  void save_checkpoint(std::ostream& os) const { write_checkpoint(os, model_fingerprint(), checkpoint()); }
+  /// The fields save_checkpoint() writes, in memory. Throws invalid_option before the zero step.
+  checkpoint_data checkpoint() const {
     if (!started_) throw error(error_code::invalid_option, "no checkpoint before the first stage has run");
-    write_checkpoint(os, model_fingerprint(),
-                     {t_, h_nominal_, h_prev_, successes_, stats_, s_, a_prev_, m_.work_pool(), m_.old_state_pool(),
-                      m_.new_state_pool(), this->dof_classes()});
+    return {t_, h_nominal_, h_prev_, successes_, stats_, s_, a_prev_, m_.work_pool(), m_.old_state_pool(),
+            m_.new_state_pool(), this->dof_classes()};
+  }
+  /// Continues from the state of another driver `d` of the same model: a
+  /// pradis::simulation of any scheme or solver, or a pradis::bdf_simulation.
+  /// The same as load_checkpoint() of d's checkpoint, without writing or
+  /// reading one (no serialisation). From another scheme, call restart_scheme()
+  /// after it, as after a checkpoint. Throws invalid_option if d has not run a
+  /// stage or its model differs (fingerprint or sizes); this one is unchanged then.
+  template <class Driver>
+    requires requires(const Driver& d) { { d.checkpoint() } -> std::same_as<checkpoint_data>; }
+  void continue_from(const Driver& d) {
+    checkpoint_data c = d.checkpoint();
+    check_handover(c, d.model_fingerprint(), model_fingerprint(), m_.dof_count(), m_.work_pool().size(),
+                   m_.old_state_pool().size(), m_.new_state_pool().size());
+    restore(std::move(c));
   }
   /// Restores a checkpoint written by save_checkpoint() for the same model (the
   /// parameters may differ: $REPLACE). The next run() continues from it exactly
@@ -229,8 +245,13 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   /// checksum, truncated, values out of range: "checkpoint damaged") is refused
   /// with io_error; the simulation is unchanged then.
   void load_checkpoint(std::istream& is) {
-    checkpoint_data c = read_checkpoint(is, model_fingerprint(), m_.dof_count(), m_.work_pool().size(),
-                                        m_.old_state_pool().size(), m_.new_state_pool().size());
+    restore(read_checkpoint(is, model_fingerprint(), m_.dof_count(), m_.work_pool().size(),
+                            m_.old_state_pool().size(), m_.new_state_pool().size()));
+  }
+
+ private:
+  /// Takes over checked checkpoint data (load_checkpoint(), continue_from()).
+  void restore(checkpoint_data c) {
     detail::detect_sources(m_, prescribed_, log_);
     s_ = std::move(c.state);
     build();
@@ -247,7 +268,6 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     started_ = true;
   }
 
- private:
   static std::string num(double x) { return detail::num(x); }
 
   std::string_view scheme_label() const {

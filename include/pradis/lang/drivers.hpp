@@ -3,9 +3,10 @@
 /// The integration drivers of a model-language session: the one-step driver
 /// (SHTERM, NEWMARK, HHT, GALPHA: pradis::simulation with a stage_scheme) and
 /// the variable-order BDF driver (BDF: pradis::bdf_simulation). One of them is
-/// current; a stage of the other kind continues from its state through an
-/// in-memory checkpoint (both write the same format), and $SAVE / $RESTORE
-/// write and read the current one's checkpoint with the session's scheme record.
+/// current; a stage with another scheme or kind continues from its state in a
+/// new driver (continue_from(): the checkpoint's fields, not serialised), and
+/// $SAVE / $RESTORE write and read the current one's checkpoint with the
+/// session's scheme record.
 
 #include <cstring>
 #include <istream>
@@ -56,7 +57,7 @@ class stage_drivers {
   bool has_driver() const noexcept { return bdf_active_ ? bdf_ != nullptr : sim_ != nullptr; }
 
   /// Makes the one-step driver with scheme p current, continuing from the current
-  /// driver's state (via an in-memory checkpoint) if a stage has run. A change of
+  /// driver's state (continue_from()) if a stage has run. A change of
   /// scheme, or a change from BDF, starts the scheme afresh (p = a), unless the
   /// previous scheme is not known (a $RESTORE of a checkpoint without the record).
   void use_scheme(const alpha_parameters& p) {
@@ -66,9 +67,7 @@ class stage_drivers {
     }
     auto next = make_sim(p);
     if (has_driver() && started_) {
-      std::stringstream ss;
-      visit([&](auto& s) { s.save_checkpoint(ss); });
-      next->load_checkpoint(ss);
+      visit([&](const auto& s) { next->continue_from(s); });
       if (scheme_known_ || bdf_active_) next->restart_scheme();
     }
     sim_ = std::move(next);
@@ -83,11 +82,7 @@ class stage_drivers {
     if (bdf_active_ && bdf_ && bdf_->options() == o) return;
     auto next = std::make_unique<bdf_type>(driven_, o);
     static_cast<Session*>(this)->attach(*next);
-    if (has_driver() && started_) {
-      std::stringstream ss;
-      visit([&](auto& s) { s.save_checkpoint(ss); });
-      next->load_checkpoint(ss);
-    }
+    if (has_driver() && started_) visit([&](const auto& s) { next->continue_from(s); });
     bdf_ = std::move(next);
     bdf_active_ = true;
   }

@@ -42,6 +42,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <concepts>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -218,19 +219,35 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   /// driver can continue from it: BDF starts every stage afresh at order 1 from
   /// the state anyway, and an alpha scheme starts with p = a. Throws
   /// invalid_option before the zero step.
-  void save_checkpoint(std::ostream& os) const {
+  void save_checkpoint(std::ostream& os) const { write_checkpoint(os, model_fingerprint(), checkpoint()); }
+  /// The fields save_checkpoint() writes, in memory. Throws invalid_option before the zero step.
+  checkpoint_data checkpoint() const {
     if (!started_) throw error(error_code::invalid_option, "no checkpoint before the first stage has run");
-    write_checkpoint(os, model_fingerprint(),
-                     {t_, std::max(hist_.step(), 0.0), stats_.last_step, 0, stats_, s_, s_.a, m_.work_pool(),
-                      m_.old_state_pool(), m_.new_state_pool(), this->dof_classes()});
+    return {t_, std::max(hist_.step(), 0.0), stats_.last_step, 0, stats_, s_, s_.a, m_.work_pool(),
+            m_.old_state_pool(), m_.new_state_pool(), this->dof_classes()};
+  }
+  /// Continues from another driver `d` of the same model (simulation or bdf_simulation) as load_checkpoint() of its
+  /// checkpoint would, not serialised; the next run() starts at order 1. Throws as simulation::continue_from().
+  template <class Driver>
+    requires requires(const Driver& d) { { d.checkpoint() } -> std::same_as<checkpoint_data>; }
+  void continue_from(const Driver& d) {
+    checkpoint_data c = d.checkpoint();
+    check_handover(c, d.model_fingerprint(), model_fingerprint(), m_.dof_count(), m_.work_pool().size(),
+                   m_.old_state_pool().size(), m_.new_state_pool().size());
+    restore(std::move(c));
   }
   /// Restores a checkpoint of the same model written by either driver (see
   /// save_checkpoint()); the next run() starts its BDF history at order 1 from
   /// it. A checkpoint of another model or format, or a damaged one, is refused
   /// with io_error and the simulation is unchanged.
   void load_checkpoint(std::istream& is) {
-    checkpoint_data c = read_checkpoint(is, model_fingerprint(), m_.dof_count(), m_.work_pool().size(),
-                                        m_.old_state_pool().size(), m_.new_state_pool().size());
+    restore(read_checkpoint(is, model_fingerprint(), m_.dof_count(), m_.work_pool().size(),
+                            m_.old_state_pool().size(), m_.new_state_pool().size()));
+  }
+
+ private:
+  /// Takes over checked checkpoint data (load_checkpoint(), continue_from()).
+  void restore(checkpoint_data c) {
     detail::detect_sources(m_, prescribed_, log_);
     s_ = std::move(c.state);
     s_.p = s_.a;
@@ -244,7 +261,6 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     started_ = true;
   }
 
- private:
   static std::string num(double x) { return detail::num(x); }
 
   [[noreturn]] void fail_option(const std::string& msg) { raise(error(error_code::invalid_option, "BDF: " + msg)); }
