@@ -34,27 +34,41 @@ std::pair<double, double> exact(double t) {
   return {e * (std::cos(wd * t) + zeta * w / wd * std::sin(wd * t)), -e * (w * w / wd) * std::sin(wd * t)};
 }
 
-/// Runs the oscillator with the driver Sim (bdf_simulation or simulation).
-template <template <class...> class Sim>
-result run(double tol) {
-  using namespace pradis;
+using oscillator_model = pradis::model<pradis::elements::point_mass, pradis::elements::linear_spring,
+                                       pradis::elements::linear_damper, pradis::elements::initial_displacement>;
+
+/// Builds the oscillator in m; returns its DOF.
+pradis::dof build(oscillator_model& m) {
   using namespace pradis::elements;
-  model<point_mass, linear_spring, linear_damper, initial_displacement> m;
-  const dof x = m.add_dof("x");
+  const pradis::dof x = m.add_dof("x");
   m.add<point_mass>("m", {1.0}, x);
   m.add<linear_spring>("k", {w * w}, x, m.ground());
   m.add<linear_damper>("c", {2 * zeta * w}, x, m.ground());
   m.add<initial_displacement>("x0", {1.0}, x);
-  Sim<decltype(m)> sim(m);
-  run_options o;
+  return x;
+}
+
+/// Error-controlled run options to `end` at DRLTX = DABSX = tol.
+pradis::run_options controlled(double tol, double end) {
+  pradis::run_options o;
   o.end = end;
   o.smax = 0.5;
   o.smin = 1e-12;
   o.error_control = true;
   o.drltx = tol;
   o.dabsx = tol;
+  return o;
+}
+
+/// Runs the oscillator with the driver Sim (bdf_simulation or simulation).
+template <template <class...> class Sim>
+result run(double tol) {
+  using namespace pradis;
+  oscillator_model m;
+  const dof x = build(m);
+  Sim<decltype(m)> sim(m);
   result r;
-  r.stats = sim.run(o);
+  r.stats = sim.run(controlled(tol, end));
   const auto [u, v] = exact(end);
   r.error = std::max(std::abs(sim.u(x) - u), std::abs(sim.v(x) - v) / w);
   return r;
@@ -63,26 +77,13 @@ result run(double tol) {
 /// Newmark to t = 5 s, then BDF from its state (continue_from) to the end, both at tol.
 double handover(double tol) {
   using namespace pradis;
-  using namespace pradis::elements;
-  model<point_mass, linear_spring, linear_damper, initial_displacement> m;
-  const dof x = m.add_dof("x");
-  m.add<point_mass>("m", {1.0}, x);
-  m.add<linear_spring>("k", {w * w}, x, m.ground());
-  m.add<linear_damper>("c", {2 * zeta * w}, x, m.ground());
-  m.add<initial_displacement>("x0", {1.0}, x);
-  run_options o;
-  o.end = 5.0;
-  o.smax = 0.5;
-  o.smin = 1e-12;
-  o.error_control = true;
-  o.drltx = tol;
-  o.dabsx = tol;
+  oscillator_model m;
+  const dof x = build(m);
   simulation first(m);
-  first.run(o);
+  first.run(controlled(tol, 5.0));
   bdf_simulation second(m);
   second.continue_from(first);  // time, state, element vectors and statistics, not serialised
-  o.end = end;
-  second.run(o);
+  second.run(controlled(tol, end));
   const auto [u, v] = exact(end);
   return std::max(std::abs(second.u(x) - u), std::abs(second.v(x) - v) / w);
 }

@@ -91,6 +91,16 @@ struct breaks_at {
 
 constexpr double osc_w = 2 * std::numbers::pi;  // m = 1, k = w^2: period 1
 
+/// Adds the oscillator below to a model with (at least) its three element types; returns its DOF.
+template <class M>
+dof add_oscillator(M& m) {
+  const dof x = m.add_dof("x");
+  m.template add<point_mass>("m", {1.0}, x);
+  m.template add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
+  m.template add<initial_displacement>("x0", {1.0}, x);
+  return x;
+}
+
 /// The oscillator u'' + w^2 u = 0, u(0) = 1, v(0) = 0 (m = 1, k = w^2: period 1).
 struct oscillator {
   model<point_mass, linear_spring, initial_displacement> m;
@@ -242,13 +252,7 @@ TEST_SUITE("integrators/bdf") {
     // uninterrupted second stage bit for bit; Newmark continues from the BDF state
     // (p = a) and BDF from Newmark's, each within its own error of the exact cosine.
     using osc = model<point_mass, linear_spring, initial_displacement>;
-    const auto make = [](auto& m) {
-      const dof x = m.add_dof("x");
-      m.template add<point_mass>("m", {1.0}, x);
-      m.template add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
-      m.template add<initial_displacement>("x0", {1.0}, x);
-      return x;
-    };
+    const auto make = [](auto& m) { return add_oscillator(m); };
     osc m1, m2, m3, m4;
     const dof x = make(m1), x2 = make(m2), x3 = make(m3), x4 = make(m4);
     run_options o = controlled(0.5, 1e-8, 0.1);
@@ -311,13 +315,7 @@ TEST_SUITE("integrators/bdf") {
     // continues from the saved bytes bit for bit, and the exact cosine within
     // each method's error.
     using osc = model<point_mass, linear_spring, initial_displacement>;
-    const auto make = [](auto& m) {
-      const dof x = m.add_dof("x");
-      m.template add<point_mass>("m", {1.0}, x);
-      m.template add<linear_spring>("k", {osc_w * osc_w}, x, m.ground());
-      m.template add<initial_displacement>("x0", {1.0}, x);
-      return x;
-    };
+    const auto make = [](auto& m) { return add_oscillator(m); };
     osc shared, viaf1, viaf2;
     const dof x = make(shared), y1 = make(viaf1), y2 = make(viaf2);
     // Newmark to 0.5 (h = 1e-4: error (w h)^2 / 24 w t ~ 1e-8), then BDF to 1.

@@ -14,6 +14,7 @@
 /// not negative, sizes of the model).
 
 #include <algorithm>
+#include <concepts>
 #include <cstdint>
 #include <cstring>
 #include <istream>
@@ -274,6 +275,13 @@ inline checkpoint_data read_checkpoint(std::istream& is, std::uint64_t fingerpri
   if (!r.at_end()) damaged("its payload has unread fields");
   return c;
 }
+
+/// A driver whose state another driver can take over (continue_from()): simulation and bdf_simulation.
+template <class D>
+concept CheckpointSource = requires(const D& d) {
+  { d.checkpoint() } -> std::same_as<checkpoint_data>;
+  { d.model_fingerprint() } -> std::same_as<std::uint64_t>;
+};
 
 /// The checks of a driver's continue_from(): the checkpoint data `c` of a driver of a model with fingerprint `from`
 /// fits a driver of a model with fingerprint `to`, `dofs` DOFs and the pool sizes (work, old state, new state).

@@ -22,6 +22,7 @@
 #include "pradis/core/diagnostics.hpp"
 #include "pradis/core/element.hpp"
 #include "pradis/core/error.hpp"
+#include "pradis/integrators/checkpoint.hpp"
 #include "pradis/integrators/failures.hpp"
 #include "pradis/integrators/initialisation.hpp"
 #include "pradis/integrators/options.hpp"
@@ -189,6 +190,14 @@ class driver_core {
                      : started_  ? " is not a DOF of this model (it has " + std::to_string(s_.u.size()) + " DOFs)"
                                  : " asked for before the first stage has run"),
                 {}, {}, d.index);
+  }
+  /// The checkpoint data of driver d, checked to fit this model (check_handover): what continue_from() takes over.
+  template <CheckpointSource Driver>
+  checkpoint_data handover_from(const Driver& d) const {
+    checkpoint_data c = d.checkpoint();
+    check_handover(c, d.model_fingerprint(), pradis::model_fingerprint(m_), m_.dof_count(), m_.work_pool().size(),
+                   m_.old_state_pool().size(), m_.new_state_pool().size());
+    return c;
   }
   /// Writes the error to the log and throws it.
   [[noreturn]] void raise(const error& e) {

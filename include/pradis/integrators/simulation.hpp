@@ -21,7 +21,6 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <concepts>
 #include <cstdint>
 #include <functional>
 #include <istream>
@@ -230,13 +229,9 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   /// reading one (no serialisation). From another scheme, call restart_scheme()
   /// after it, as after a checkpoint. Throws invalid_option if d has not run a
   /// stage or its model differs (fingerprint or sizes); this one is unchanged then.
-  template <class Driver>
-    requires requires(const Driver& d) { { d.checkpoint() } -> std::same_as<checkpoint_data>; }
+  template <CheckpointSource Driver>
   void continue_from(const Driver& d) {
-    checkpoint_data c = d.checkpoint();
-    check_handover(c, d.model_fingerprint(), model_fingerprint(), m_.dof_count(), m_.work_pool().size(),
-                   m_.old_state_pool().size(), m_.new_state_pool().size());
-    restore(std::move(c));
+    restore(this->handover_from(d));
   }
   /// Restores a checkpoint written by save_checkpoint() for the same model (the
   /// parameters may differ: $REPLACE). The next run() continues from it exactly

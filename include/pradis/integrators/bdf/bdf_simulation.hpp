@@ -42,7 +42,6 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <concepts>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -228,13 +227,9 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   }
   /// Continues from another driver `d` of the same model (simulation or bdf_simulation) as load_checkpoint() of its
   /// checkpoint would, not serialised; the next run() starts at order 1. Throws as simulation::continue_from().
-  template <class Driver>
-    requires requires(const Driver& d) { { d.checkpoint() } -> std::same_as<checkpoint_data>; }
+  template <CheckpointSource Driver>
   void continue_from(const Driver& d) {
-    checkpoint_data c = d.checkpoint();
-    check_handover(c, d.model_fingerprint(), model_fingerprint(), m_.dof_count(), m_.work_pool().size(),
-                   m_.old_state_pool().size(), m_.new_state_pool().size());
-    restore(std::move(c));
+    restore(this->handover_from(d));
   }
   /// Restores a checkpoint of the same model written by either driver (see
   /// save_checkpoint()); the next run() starts its BDF history at order 1 from
