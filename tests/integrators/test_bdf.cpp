@@ -20,6 +20,9 @@
 //    needs fewer Newton iterations than IDA's window; with fixed steps BDF2..BDF4
 //    converge with their order there (omega_b(T) = omega_b(0) exactly), which needs the
 //    kept convergence rate of the Newton test to age (kept_rate_ss);
+//  * checkpoints and continue_from (a driver taking over another's state in memory):
+//    the continued runs equal the uninterrupted or byte-restored ones bit for bit and
+//    the exact cosine within each method's error;
 //  * CONTROL (no error-driven step below it) and bad options.
 
 #include <doctest/doctest.h>
