@@ -164,6 +164,30 @@ TEST_SUITE("core/checkpoint") {
     }
   }
 
+  TEST_CASE("check_handover refuses data of another model or of other sizes (continue_from's checks)") {
+    // The data of a run of the two-body model: 6 DOFs and its pools.
+    two_body_model a;
+    build(a);
+    simulation sa(a, stoermer{});
+    sa.run(stage(0.01));
+    const checkpoint_data c = sa.checkpoint();
+    const auto fp = sa.model_fingerprint();
+    const auto w = a.work_pool().size(), o = a.old_state_pool().size(), n = a.new_state_pool().size();
+    CHECK_NOTHROW(check_handover(c, fp, fp, a.dof_count(), w, o, n));
+    const auto refused = [&](std::uint64_t to, int dofs, std::size_t work, const char* text) {
+      try {
+        check_handover(c, fp, to, dofs, work, o, n);
+        FAIL("must refuse");
+      } catch (const error& e) {
+        CHECK(e.code() == error_code::invalid_option);
+        CHECK(e.message().find(text) != std::string::npos);
+      }
+    };
+    refused(fp + 1, a.dof_count(), w, "different model");
+    refused(fp, a.dof_count() + 1, w, "other sizes");
+    refused(fp, a.dof_count(), w + 1, "other sizes");
+  }
+
   TEST_CASE("a truncated checkpoint or another file is refused") {
     two_body_model a;
     build(a);
