@@ -55,6 +55,49 @@ struct warning_spring {
     if (out.want_jacobian) out.K << p.k, -p.k, -p.k, p.k;
   }
 };
+/// A spring that adds its stiffness to the blocks it is handed and counts the
+/// evaluations that received blocks that were not zero (local_output's contract:
+/// with want_jacobian they arrive zeroed, so elements may add to them).
+struct adding_spring {
+  static constexpr pradis::passport passport{.name = "ADDS", .ext = 2, .par = 1, .adr = 1, .ign = 23};
+  static constexpr element_help help{.title = "test spring that adds to its block",
+                                     .name = "test",
+                                     .field = "test",
+                                     .dofs = "1 - a\n2 - b",
+                                     .parameters = "1 - k",
+                                     .work = "",
+                                     .special = "code 100 never"};
+  struct parameters {
+    double k = 1;
+  } p;
+  static inline int dirty_blocks = 0;
+  explicit adding_spring(parameters q) : p(q) {}
+  static adding_spring from_parameters(std::span<const double> v) { return adding_spring({v[0]}); }
+  void evaluate(const local_input<adding_spring>& in, local_output<adding_spring>& out, element_context&) const {
+    out.f(0) = p.k * (in.u(0) - in.u(1));
+    out.f(1) = -out.f(0);
+    if (!out.want_jacobian) return;
+    if (!out.K.isZero(0.0)) ++dirty_blocks;
+    out.K(0, 0) += p.k;
+    out.K(0, 1) -= p.k;
+    out.K(1, 0) -= p.k;
+    out.K(1, 1) += p.k;
+  }
+};
+struct add_spec {
+  static constexpr std::string_view name = "APAIR";
+  static constexpr std::string_view title = "two adding springs in series";
+  static constexpr int ext = 2, ent = 1;
+};
+using add_pair = composite<add_spec, part<adding_spring, 0, 2>, part<adding_spring, 2, 1>>;
+
+/// Fills 32 kB of the stack below the caller with non-zero values.
+[[gnu::noinline]] double dirty_stack() {
+  volatile double junk[4096];
+  for (int i = 0; i < 4096; ++i) junk[i] = 1.0 + i;
+  return junk[4095];
+}
+
 struct warn_spec {
   static constexpr std::string_view name = "WPAIR";
   static constexpr std::string_view title = "two warning springs in series";
@@ -538,6 +581,27 @@ TEST_SUITE("elements/composite") {
     local_input<warning_spring> i1;
     warning_spring({2.0}).evaluate(i1, o1, c1.ctx);
     CHECK(log_text.str() == "WARNS 'alone': stretched\n");
+  }
+
+  TEST_CASE("a part is handed zeroed blocks, as by the assembler, and may add to them") {
+    // The stack the composite's part outputs will occupy is dirtied first (by a call
+    // that fills a large local array), so that blocks left uninitialised would show.
+    add_pair a({{adding_spring::parameters{2.0}, adding_spring::parameters{3.0}}});
+    own_context<add_pair> c("pair");
+    local_input<add_pair> in;
+    in.u << 0.1, -0.2, 0.3;
+    adding_spring::dirty_blocks = 0;
+    for (int trial = 0; trial < 3; ++trial) {
+      CHECK(dirty_stack() == 4096.0);
+      local_output<add_pair> out;
+      out.clear();
+      a.evaluate(in, out, c.ctx);
+      // Springs k1 = 2 between DOFs 1 and 3, k2 = 3 between 3 and 2.
+      Eigen::Matrix3d k;
+      k << 2, 0, -2, 0, 3, -3, -2, -3, 5;
+      CHECK(out.K == k);
+    }
+    CHECK(adding_spring::dirty_blocks == 0);
   }
 
   TEST_CASE("initial values of the parts are merged; different requests for one DOF are code 90") {

@@ -6,7 +6,9 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
+#include <span>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -273,5 +275,75 @@ TEST_SUITE("linalg") {
     CHECK(txt.find("fill " + std::to_string(s.fill)) != std::string::npos);
     CHECK(txt.find("mean nonzeros right of the diagonal") != std::string::npos);
     CHECK(txt.find("perturbed pivot") != std::string::npos);
+  }
+
+  TEST_CASE("solve_unchecked: the substitutions alone on a clean factor, solve() after perturbed pivots") {
+    // A clean factor (no perturbed pivot, delayed zero-diagonal rows): the solution
+    // matches dense LU to roundoff without a residual check (last_backward_error -1),
+    // and solve_unchecked(b1, b2) equals two single calls bit for bit.
+    const auto m = saddle(60, 5, false);
+    sparse_lu<min_degree_ordering> lu;
+    lu.analyze(m.pattern);
+    lu.factorize(m.values);
+    REQUIRE(lu.statistics().perturbed_pivots == 0);
+    const auto b = rhs(65, 9u);
+    const Eigen::VectorXd xd = m.dense().fullPivLu().solve(Eigen::Map<const Eigen::VectorXd>(b.data(), 65));
+    std::vector<double> x = b;
+    const long steps = lu.statistics().refinement_steps;
+    lu.solve_unchecked(x);
+    double err = 0;
+    for (int i = 0; i < 65; ++i) err = std::max(err, std::abs(x[static_cast<std::size_t>(i)] - xd(i)));
+    CHECK(err < 1e-13 * std::max(1.0, xd.cwiseAbs().maxCoeff()));
+    CHECK(lu.statistics().last_backward_error == -1.0);
+    CHECK(lu.statistics().refinement_steps == steps);
+    CHECK(lu.statistics().solves == 1);
+    const auto b2 = rhs(65, 10u);
+    std::vector<double> y1 = b, y2 = b2, z2 = b2;
+    lu.solve_unchecked(std::span<double>(y1), std::span<double>(y2));
+    lu.solve_unchecked(z2);
+    CHECK(y1 == x);
+    CHECK(y2 == z2);
+    CHECK(lu.statistics().solves == 4);
+    // The checks of the right-hand side and of the state remain.
+    std::vector<double> bad = b;
+    bad[3] = std::numeric_limits<double>::infinity();
+    try {
+      lu.solve_unchecked(bad);
+      FAIL("solve_unchecked did not throw");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::non_finite);
+      CHECK(e.dof() == 3);
+    }
+    std::vector<double> short_b(10);
+    CHECK_THROWS_AS(lu.solve_unchecked(short_b), std::invalid_argument);
+    sparse_lu<> unfactorised;
+    CHECK_THROWS_AS(unfactorised.solve_unchecked(short_b), std::logic_error);
+
+    // After a perturbed pivot ([[0,1],[1,0]] in natural order) solve_unchecked is solve():
+    // refined to the exact answer, its backward error measured, and an impossible residual
+    // tolerance still reported.
+    const auto p = sparsity_pattern::from_entries(2, entries_t{{0, 0}, {0, 1}, {1, 0}, {1, 1}});
+    sparse_lu<natural_ordering> swap;
+    swap.analyze(p);
+    swap.factorize(std::vector<double>{0.0, 1.0, 1.0, 0.0});
+    REQUIRE(swap.statistics().perturbed_pivots == 1);
+    std::vector<double> s1{3.0, -2.0}, s2{3.0, -2.0}, t1{1.0, 4.0}, t2{1.0, 4.0};
+    swap.solve_unchecked(s1);
+    swap.solve(s2);
+    CHECK(s1 == s2);
+    CHECK(s1[0] == doctest::Approx(-2.0).epsilon(1e-14));
+    CHECK(swap.statistics().last_backward_error >= 0);
+    CHECK(swap.statistics().last_backward_error < 1e-15);
+    swap.solve_unchecked(std::span<double>(s2), std::span<double>(t1));
+    swap.solve(t2);
+    CHECK(t1 == t2);
+    swap.residual_tolerance = -1.0;  // nothing passes
+    std::vector<double> s3{3.0, -2.0};
+    try {
+      swap.solve_unchecked(s3);
+      FAIL("solve_unchecked did not throw");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::singular_matrix);
+    }
   }
 }

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <tuple>
 #include <vector>
 
@@ -328,5 +329,57 @@ TEST_SUITE("spatial/joints") {
       check_error(error_from([&] { sim.run({.end = 0.1, .smax = 0.01}); }), error_code::invalid_parameter, "REV3",
                   "hinge", b.mention);
     }
+  }
+
+  TEST_CASE("joints evaluated for their flows alone give the flows of a full evaluation bit for bit") {
+    // Without a Jacobian (local_output::want_jacobian false) the joints skip the
+    // derivatives of their attached points (attached_point's `derivatives`); flows and
+    // work outputs must not change. Random states, quaternions near unit length.
+    std::mt19937 rng(11u);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    auto compare = [&]<class E>(const E& e) {
+      CAPTURE(E::passport.name);
+      for (int trial = 0; trial < 20; ++trial) {
+        local_input<E> in;
+        for (int k = 0; k < element_traits<E>::n; ++k) {
+          in.u(k) = 0.1 * u(rng);
+          in.v(k) = u(rng);
+        }
+        in.u(12) += 1.0;
+        in.u(13) += 1.0;
+        std::vector<double> w1(static_cast<std::size_t>(E::passport.wrk)), w2 = w1;
+        element_context c1(E::passport.name, "full"), c2(E::passport.name, "flows");
+        c1.work = w1;
+        c2.work = w2;
+        local_output<E> full, flows;
+        full.clear();
+        flows.want_jacobian = false;
+        e.evaluate(in, full, c1);
+        e.evaluate(in, flows, c2);
+        CHECK(flows.f == full.f);
+        CHECK(w1 == w2);
+      }
+    };
+    compare(exact_spherical_joint(exact_spherical_joint::example()));
+    compare(exact_revolute_joint(exact_revolute_joint::example()));
+    compare(exact_cylindrical_joint(exact_cylindrical_joint::example()));
+    compare(exact_fixed_joint(exact_fixed_joint::example()));
+    compare(spherical_joint(spherical_joint::example()));
+    compare(revolute_joint(revolute_joint::example()));
+  }
+
+  TEST_CASE("attached_point without derivatives: the same point and velocities, the derivatives NaN") {
+    const vec3 x0(0.1, -0.2, 0.3), a(0.4, 0.5, -0.6), x(0.01, 0.02, -0.03), xd(0.5, -0.1, 0.2);
+    const quaternion q(0.1, -0.2, 0.3, 0.9), qd(0.3, 0.1, -0.2, 0.05);
+    const pradis::elements::detail::attached_point full(x0, a, x, xd, q, qd), bare(x0, a, x, xd, q, qd, false);
+    CHECK(bare.p == full.p);
+    CHECK(bare.v == full.v);
+    CHECK(bare.rho == full.rho);
+    CHECK(bare.omega == full.omega);
+    CHECK(bare.theta == full.theta);
+    CHECK(full.dv_dq.allFinite());
+    CHECK(bare.domega_dq.hasNaN());
+    CHECK(bare.dp_dq.hasNaN());
+    CHECK(bare.dv_dq.hasNaN());
   }
 }

@@ -204,6 +204,7 @@ struct composite {
       li.t = in.t;
       local_output<E> lo;
       lo.want_jacobian = out.want_jacobian;
+      if (lo.want_jacobian) lo.clear();  // a part gets its blocks zeroed, as from the assembler
       guarded<I, P>(ctx, [&](element_context& c) { std::get<I>(parts_).evaluate(li, lo, c); });
       for (int r = 0; r < pt::n; ++r) out.f(mp[static_cast<std::size_t>(r)]) += lo.f(r);
       if (!out.want_jacobian) return;

@@ -6,7 +6,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pradis/linalg/sparsity.hpp"
+
 namespace pradis::linalg::detail {
+
+/// ||A||_1, the largest column sum of |a_ij|, of a matrix with pattern a and values
+/// (CSR order); w is a work vector of size n (0 when n = 0).
+inline double max_column_sum(const sparsity_pattern& a, const double* values, double* w) {
+  const auto n = static_cast<std::size_t>(a.n);
+  std::fill(w, w + n, 0.0);
+  for (std::size_t q = 0; q < a.col.size(); ++q) w[a.col[q]] += std::abs(values[q]);
+  return n > 0 ? *std::max_element(w, w + n) : 0.0;
+}
 
 /// Lower-bound estimate of ||A^{-1}||_1, usually within a factor 3 and very often exact
 /// (Higham, "Accuracy and Stability of Numerical Algorithms", 2nd ed., Algorithm 15.4 and

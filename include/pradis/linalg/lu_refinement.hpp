@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "pradis/linalg/lu_substitution.hpp"
@@ -19,6 +20,17 @@ struct residual_matrix {
   const double* values;
   const double* row_norm1;
 };
+
+/// The probe right-hand side of a factorisation with perturbed pivots: a fixed
+/// pseudo-random vector in [-1, 1) (in no special subspace, so for a singular matrix it is
+/// almost surely inconsistent and refinement cannot reduce its residual).
+inline void fill_probe(double* b, int n) {
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;
+  for (int r = 0; r < n; ++r) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    b[r] = static_cast<double>(state >> 11) * 0x1.0p-52 - 1.0;
+  }
+}
 
 /// res := b - A x; returns the backward error max_i |r_i| / (||A_i||_1 ||x||_inf + |b_i|)
 /// (0/0 counts as 0, r/0 and a non-finite x as infinity).

@@ -67,7 +67,8 @@ struct lu_statistics {
   double max_growth = 0;
   /// Backward error of the last solve() (the scaled residual), on the equilibrated system
   /// D_r A D_c y = D_r b: max_i |D_r (b - A x)|_i / (||(D_r A D_c)_i||_1 ||D_c^{-1} x||_inf +
-  /// |D_r b|_i). Near eps = 2.2e-16 for a backward-stable solve.
+  /// |D_r b|_i). Near eps = 2.2e-16 for a backward-stable solve; -1 after a
+  /// sparse_lu::solve_unchecked() that did not measure it.
   double last_backward_error = 0;
   /// Estimate of the 1-norm condition number of the equilibrated matrix of the last
   /// factorize() (Hager/Higham, see sparse_lu::estimate_condition()); 0 when not estimated

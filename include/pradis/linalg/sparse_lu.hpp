@@ -249,13 +249,7 @@ class sparse_lu {
     factorized_ = true;
 
     if (perturbed > 0) {
-      // Probe: a fixed pseudo-random right-hand side in [-1,1) (in no special subspace, so for a
-      // singular matrix it is almost surely inconsistent and refinement cannot reduce it).
-      std::uint64_t state = 0x9E3779B97F4A7C15ull;
-      for (int r = 0; r < n; ++r) {
-        state = state * 6364136223846793005ull + 1442695040888963407ull;
-        probe_[r] = static_cast<double>(state >> 11) * 0x1.0p-52 - 1.0;
-      }
+      detail::fill_probe(probe_.data(), n);
       const double eta = solve_refined(probe_.data());
       if (!(eta <= residual_tolerance)) {
         factorized_ = false;
@@ -313,6 +307,26 @@ class sparse_lu {
       stats_.last_solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
+  /// solve(b) and solve(b1, b2) for a caller that verifies the solution itself (a Newton
+  /// convergence test, as in the BDF corrector): after a factorize() that perturbed no pivot,
+  /// the substitutions alone (backward stable up to the factor's growth; not timed), with no
+  /// residual check or refinement, and statistics().last_backward_error = -1 (not measured).
+  /// After perturbed pivots they are solve(). solve()'s checks of b and of x remain.
+  void solve_unchecked(std::span<double> b) const {
+    if (stats_.perturbed_pivots > 0) return solve(b);
+    prepare(b);
+    detail::lu_solve(lu_, f_val_.data(), work_.data(), b.data(), inv_diag_.data());
+    finish(b, -1);
+  }
+  void solve_unchecked(std::span<double> b1, std::span<double> b2) const {
+    if (stats_.perturbed_pivots > 0) return solve(b1, b2);
+    prepare(b1);
+    prepare(b2);
+    detail::lu_solve2(lu_, f_val_.data(), work_.data(), work2_.data(), b1.data(), b2.data(), inv_diag_.data());
+    finish(b1, -1);
+    finish(b2, -1);
+  }
+
   /// Estimate of the 1-norm condition number ||B||_1 ||B^{-1}||_1 of the equilibrated matrix
   /// B = D_r A D_c of the last factorize() (detail::estimate_inverse_norm1: Hager/Higham, with
   /// solves by the factor and its transpose; a lower bound, usually within a factor 3). Also
@@ -322,12 +336,9 @@ class sparse_lu {
   /// std::logic_error when not factorised.
   double estimate_condition() const {
     if (!factorized_) throw std::logic_error("sparse_lu::estimate_condition called without a successful factorize");
-    const int n = stats_.n;
-    std::fill(res_.begin(), res_.end(), 0.0);
-    for (std::size_t q = 0; q < a_val_.size(); ++q) res_[pattern_.col[q]] += std::abs(a_val_[q]);
-    const double norm1 = n > 0 ? *std::max_element(res_.begin(), res_.end()) : 0.0;
+    const double norm1 = detail::max_column_sum(pattern_, a_val_.data(), res_.data());
     const double inv = detail::estimate_inverse_norm1(
-        n, [this](double* x) { detail::lu_solve(lu_, f_val_.data(), work_.data(), x); },
+        stats_.n, [this](double* x) { detail::lu_solve(lu_, f_val_.data(), work_.data(), x); },
         [this](double* x) { detail::lu_solve_transposed(lu_, f_val_.data(), work_.data(), x); }, rhs_.data(),
         corr_.data());
     stats_.condition_estimate = norm1 * inv;

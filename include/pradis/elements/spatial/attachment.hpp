@@ -5,6 +5,7 @@
 /// elements (SD3, RSD3, SPH3, REV3) need for their Jacobians. No allocation.
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "pradis/spatial/quaternion.hpp"
@@ -31,9 +32,11 @@ struct attached_point {
   spatial::mat34 dp_dq;     ///< dp/dq = dv/dq'
   spatial::mat34 dv_dq;     ///< dv/dq
 
-  /// Evaluates everything at (x, x', q, q'); q must not be near zero.
+  /// Evaluates everything at (x, x', q, q'); q must not be near zero. Without
+  /// `derivatives` (flows only: local_output::want_jacobian false) domega_dq, dp_dq
+  /// and dv_dq are not computed and hold NaN.
   attached_point(const spatial::vec3& x0, const spatial::vec3& a, const spatial::vec3& x, const spatial::vec3& xd,
-                 const spatial::quaternion& q, const spatial::quaternion& qd) {
+                 const spatial::quaternion& q, const spatial::quaternion& qd, bool derivatives = true) {
     using namespace spatial;
     const double s = q.squaredNorm();
     rho = rotation_matrix(q) * a;
@@ -41,6 +44,13 @@ struct attached_point {
     theta = (2.0 / s) * e_matrix(q);
     omega = theta * qd;
     v = xd + omega.cross(rho);
+    if (!derivatives) {
+      constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+      domega_dq.setConstant(nan);
+      dp_dq.setConstant(nan);
+      dv_dq.setConstant(nan);
+      return;
+    }
     domega_dq = -(2.0 / s) * (e_matrix(qd) + omega * q.transpose());
     const mat3 rx = skew(rho);
     dp_dq = -rx * theta;
@@ -83,9 +93,7 @@ void two_point_flows(const attached_point& a, const attached_point& b, const spa
     out.f.template segment<3>(6 * i) = sg[i] * f;
     out.f.template segment<3>(6 * i + 3) = sg[i] * pts[i]->rho.cross(f);
   }
-  if (!out.want_jacobian) return;
-  out.K.setZero();
-  out.C.setZero();
+  if (!out.want_jacobian) return;  // the blocks arrive zeroed (local_output's contract)
   for (int j = 0; j < 2; ++j) {
     const attached_point& pj = *pts[j];
     const mat3 dku_x = sg[j] * fd;
@@ -109,14 +117,16 @@ void two_point_flows(const attached_point& a, const attached_point& b, const spa
 }
 
 /// The two attached points of a two-body connecting element (local layout of
-/// two_point_flows) from the local input and the initial positions / offsets.
+/// two_point_flows) from the local input and the initial positions / offsets (with
+/// their derivatives unless `derivatives` is false, see attached_point).
 template <class In>
 std::pair<attached_point, attached_point> two_points(const In& in, const spatial::vec3& xa0, const spatial::vec3& ra,
-                                                     const spatial::vec3& xb0, const spatial::vec3& rb) {
+                                                     const spatial::vec3& xb0, const spatial::vec3& rb,
+                                                     bool derivatives = true) {
   return {attached_point(xa0, ra, in.u.template segment<3>(0), in.v.template segment<3>(0),
-                         slot_quaternion(in.u, 3, 12), slot_quaternion(in.v, 3, 12)),
+                         slot_quaternion(in.u, 3, 12), slot_quaternion(in.v, 3, 12), derivatives),
           attached_point(xb0, rb, in.u.template segment<3>(6), in.v.template segment<3>(6),
-                         slot_quaternion(in.u, 9, 13), slot_quaternion(in.v, 9, 13))};
+                         slot_quaternion(in.u, 9, 13), slot_quaternion(in.v, 9, 13), derivatives)};
 }
 
 /// Whether both quaternions of a two-body element (slots 3/12 and 9/13) are far from zero

@@ -33,13 +33,11 @@ namespace pradis::elements::detail {
 /// The local index of the first multiplier of an exact spatial joint.
 inline constexpr int first_multiplier = 14;
 
-/// Zeroes the flows and, when wanted, the Jacobian blocks before the rows are added.
+/// Zeroes the flows before the rows are added. The Jacobian blocks, when wanted,
+/// arrive zeroed (local_output's contract), so the rows only add to them.
 template <class Out>
 void begin_exact_joint(Out& out) {
   out.f.setZero();
-  if (!out.want_jacobian) return;
-  out.K.setZero();
-  out.C.setZero();
 }
 
 /// The point rows p_B - p_A = 0 at local rows r..r+2 with the force lambda (the

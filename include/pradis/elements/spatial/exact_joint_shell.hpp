@@ -153,7 +153,7 @@ struct exact_joint : Kind {
     using namespace spatial;
     if (!two_quaternions_admissible_strict(in))
       ctx.singular("Lq near zero: the quaternion norm |q| of a rotational node has vanished");
-    const auto [a, b] = this->p.geo.points(in);
+    const auto [a, b] = this->p.geo.points(in, out.want_jacobian);  // flows use no derivative
     const joint_bodies s{a, b, rotation_matrix(slot_quaternion(in.u, 3, 12)),
                          rotation_matrix(slot_quaternion(in.u, 9, 13))};
     begin_exact_joint(out);

@@ -65,11 +65,12 @@ struct joint_geometry {
     d.line(d.body_point(xa, 0, 0, spatial::vec3::Zero()), d.body_point(xa, 0, 0, {rax, ray, raz}));
     d.line(d.body_point(xb, 6, 1, spatial::vec3::Zero()), d.body_point(xb, 6, 1, {rbx, rby, rbz}));
   }
-  /// The two attached points of a two-body element.
+  /// The two attached points of a two-body element (without their derivatives when
+  /// `derivatives` is false: see attached_point).
   template <class In>
-  std::pair<attached_point, attached_point> points(const In& in) const {
+  std::pair<attached_point, attached_point> points(const In& in, bool derivatives = true) const {
     return two_points(in, spatial::vec3(xa0, ya0, za0), spatial::vec3(rax, ray, raz), spatial::vec3(xb0, yb0, zb0),
-                      spatial::vec3(rbx, rby, rbz));
+                      spatial::vec3(rbx, rby, rbz), derivatives);
   }
 };
 
@@ -105,7 +106,7 @@ inline constexpr std::string_view spherical_joint_parameter_help =
 template <class In, class Out>
 std::pair<attached_point, attached_point> point_coupling(const joint_geometry& geo, double k, double c, const In& in,
                                                          Out& out, spatial::vec3& f) {
-  auto ab = geo.points(in);
+  auto ab = geo.points(in, out.want_jacobian);  // the flows use no derivative of the points
   const spatial::vec3 d = ab.second.p - ab.first.p;
   f = k * d + c * (ab.second.v - ab.first.v);
   two_point_flows(ab.first, ab.second, f, k * spatial::mat3::Identity(), c * spatial::mat3::Identity(), out);

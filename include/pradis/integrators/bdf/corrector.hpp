@@ -115,15 +115,26 @@ void stabilised_rows(const Assembler& as, const global_state& s, index2_stabilis
   }
 }
 
-/// Solves for the shift and the correction with the same factorisation: in one
-/// call if the solver has a two-right-hand-side solve (sparse_lu), else in two.
+/// Solves for the correction b1 (and the shift *b2, if given) with the same
+/// factorisation: without the residual check where the solver offers that
+/// (sparse_lu::solve_unchecked; the corrector's convergence test verifies the
+/// corrections), and in one call where it has a two-right-hand-side solve.
 template <class Solver>
-void solve_both(const Solver& solver, std::vector<double>& b1, std::vector<double>& b2) {
-  if constexpr (requires { solver.solve(std::span<double>(b1), std::span<double>(b2)); }) {
-    solver.solve(std::span<double>(b1), std::span<double>(b2));
+void solve_corrections(const Solver& solver, std::vector<double>& b1, std::vector<double>* b2) {
+  const std::span<double> x1(b1);
+  if constexpr (requires { solver.solve_unchecked(x1, x1); }) {
+    if (b2)
+      solver.solve_unchecked(x1, std::span<double>(*b2));
+    else
+      solver.solve_unchecked(x1);
+  } else if constexpr (requires { solver.solve(x1, x1); }) {
+    if (b2)
+      solver.solve(x1, std::span<double>(*b2));
+    else
+      solver.solve(x1);
   } else {
-    solver.solve(b1);
-    solver.solve(b2);
+    solver.solve(x1);
+    if (b2) solver.solve(std::span<double>(*b2));
   }
 }
 
@@ -178,10 +189,7 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
           rj->to_reference(s, rhs);
           if (st) rj->to_reference(s, st->rhs);
         }
-        if (st)
-          solve_both(solver, st->rhs, rhs);
-        else
-          solver.solve(rhs);
+        solve_corrections(solver, rhs, st ? &st->rhs : nullptr);
         if (rj) {
           rj->from_reference(s, rhs);
           if (st) rj->from_reference(s, st->rhs);

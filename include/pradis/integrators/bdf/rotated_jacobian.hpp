@@ -75,6 +75,8 @@ class rotated_jacobian {
     for (entry& e : nodes_) {
       e.q0 = get(s.u, e);
       if (e.body) e.r0 = spatial::rotation_matrix(e.q0);
+      e.a0 = e.body ? spatial::g_matrix(e.q0) : spatial::e_matrix(e.q0);
+      e.inv_s0 = 1 / e.q0.squaredNorm();
     }
   }
   /// R(q0) R(q)^T on the moment rows of a right-hand side of the nodes turned
@@ -99,6 +101,8 @@ class rotated_jacobian {
     bool body = false;         // turned in the body frame
     spatial::quaternion q0 = spatial::identity();
     spatial::mat3 r0 = spatial::mat3::Identity();  // R(q0), body frame only
+    spatial::mat34 a0 = spatial::e_matrix(spatial::identity());  // G(q0) (body frame) or E(q0)
+    double inv_s0 = 1;                                           // 1 / (q0 . q0)
   };
   static double& at(std::span<double> x, const entry& e, int j) {
     return x[static_cast<std::size_t>(e.eq[static_cast<std::size_t>(j)])];
@@ -110,11 +114,11 @@ class rotated_jacobian {
   static void apply(const entry& e, const global_state& s, std::span<double> x) {
     const spatial::quaternion q = get(s.u, e);
     const spatial::mat34 a = e.body ? spatial::g_matrix(q) : spatial::e_matrix(q);
-    const spatial::mat34 a0 = e.body ? spatial::g_matrix(e.q0) : spatial::e_matrix(e.q0);
-    const Eigen::Matrix4d m = (a.transpose() * a0 + q * e.q0.transpose()) / e.q0.squaredNorm();
     spatial::quaternion v;
     for (int j = 0; j < 4; ++j) v(j) = at(x, e, j);
-    const spatial::quaternion r = m * v;
+    // S^-1 v = (A(q)^T (A(q0) v) + q (q0 . v)) / s0, without forming the 4 x 4 matrix.
+    const spatial::vec3 w = e.a0 * v;
+    const spatial::quaternion r = (a.transpose() * w + q * e.q0.dot(v)) * e.inv_s0;
     for (int j = 0; j < 4; ++j) at(x, e, j) = r(j);
   }
   std::vector<entry> nodes_;
