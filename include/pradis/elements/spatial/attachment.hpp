@@ -25,6 +25,7 @@ namespace pradis::elements::detail {
 struct attached_point {
   spatial::vec3 p;          ///< global position of the point [m]
   spatial::vec3 v;          ///< global velocity of the point [m/s]
+  spatial::mat3 r;          ///< R(q), the body's rotation matrix
   spatial::vec3 rho;        ///< R a: the offset in global axes [m]
   spatial::vec3 omega;      ///< global angular velocity of the body [rad/s]
   spatial::mat34 theta;     ///< Theta = (2/s) E(q): small global rotation per dq
@@ -39,7 +40,8 @@ struct attached_point {
                  const spatial::quaternion& q, const spatial::quaternion& qd, bool derivatives = true) {
     using namespace spatial;
     const double s = q.squaredNorm();
-    rho = rotation_matrix(q) * a;
+    r = rotation_matrix(q);
+    rho = r * a;
     p = x0 + x + rho;
     theta = (2.0 / s) * e_matrix(q);
     omega = theta * qd;

@@ -45,11 +45,11 @@ namespace detail {
 template <class Mu, class Out>
 void add_frame_rows(const joint_bodies& s, const joint_frame& fa, const joint_frame& fb, const Mu& mu, int k, int r,
                     Out& out, std::span<double> work, std::size_t w) {
-  const spatial::vec3 ta = s.ra * fa.t, na = s.ra * fa.n, eb = s.rb * fb.e, tb = s.rb * fb.t;
+  const spatial::vec3 ta = s.a.r * fa.t, na = s.a.r * fa.n, eb = s.b.r * fb.e, tb = s.b.r * fb.t;
   add_perpendicular_row(s.a, s.b, ta, eb, mu(k), r, out);
   add_perpendicular_row(s.a, s.b, na, eb, mu(k + 1), r + 1, out);
   add_perpendicular_row(s.a, s.b, na, tb, mu(k + 2), r + 2, out);
-  work[w] = angle_between(s.ra * fa.e, eb);
+  work[w] = angle_between(s.a.r * fa.e, eb);
   work[w + 1] = std::atan2(na.dot(tb), ta.dot(tb));
 }
 
@@ -98,10 +98,10 @@ struct prismatic_kind_t {
   template <class Mu, class Out>
   void rows(const joint_bodies& s, const Mu& mu, Out& out, std::span<double> work) const {
     constexpr int r = first_multiplier;
-    add_line_row(s.a, s.b, s.ra * fa.t, mu(0), r, out);
-    add_line_row(s.a, s.b, s.ra * fa.n, mu(1), r + 1, out);
+    add_line_row(s.a, s.b, s.a.r * fa.t, mu(0), r, out);
+    add_line_row(s.a, s.b, s.a.r * fa.n, mu(1), r + 1, out);
     add_frame_rows(s, fa, fb, mu, 2, r + 2, out, work, 4);
-    const spatial::vec3 ua = s.ra * fa.e, d = s.b.p - s.a.p;
+    const spatial::vec3 ua = s.a.r * fa.e, d = s.b.p - s.a.p;
     work[0] = off_line(d, ua);
     work[9] = ua.dot(d);
   }
@@ -195,9 +195,9 @@ struct point_on_line_kind_t {
   template <class Mu, class Out>
   void rows(const joint_bodies& s, const Mu& mu, Out& out, std::span<double> work) const {
     constexpr int r = first_multiplier;
-    add_line_row(s.a, s.b, s.ra * n1, mu(0), r, out);
-    add_line_row(s.a, s.b, s.ra * n2, mu(1), r + 1, out);
-    const spatial::vec3 ua = s.ra * e, d = s.b.p - s.a.p;
+    add_line_row(s.a, s.b, s.a.r * n1, mu(0), r, out);
+    add_line_row(s.a, s.b, s.a.r * n2, mu(1), r + 1, out);
+    const spatial::vec3 ua = s.a.r * e, d = s.b.p - s.a.p;
     work[0] = off_line(d, ua);
     work[4] = ua.dot(d);
   }
@@ -240,7 +240,7 @@ struct point_on_plane_kind_t {
   void check(element_context& ctx) const { check_joint_vector(ctx, "normal n", p.ex, p.ey, p.ez); }
   template <class Mu, class Out>
   void rows(const joint_bodies& s, const Mu& mu, Out& out, std::span<double> work) const {
-    work[0] = add_line_row(s.a, s.b, s.ra * n, mu(0), first_multiplier, out);
+    work[0] = add_line_row(s.a, s.b, s.a.r * n, mu(0), first_multiplier, out);
   }
 };
 

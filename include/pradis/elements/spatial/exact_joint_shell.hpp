@@ -19,12 +19,10 @@
 namespace pradis::elements::detail {
 
 /// The two bodies of an exact joint at one evaluation: the attached joint points
-/// and the rotation matrices R(q_a), R(q_b).
+/// (with the rotation matrices R(q_a) = a.r, R(q_b) = b.r).
 struct joint_bodies {
-  attached_point a;  ///< joint point A of body a
-  attached_point b;  ///< joint point B of body b
-  spatial::mat3 ra;  ///< R(q_a)
-  spatial::mat3 rb;  ///< R(q_b)
+  const attached_point& a;  ///< joint point A of body a
+  const attached_point& b;  ///< joint point B of body b
 };
 
 /// A unit vector and the code-100 check of its raw value (finite, non-zero).
@@ -153,9 +151,8 @@ struct exact_joint : Kind {
     using namespace spatial;
     if (!two_quaternions_admissible_strict(in))
       ctx.singular("Lq near zero: the quaternion norm |q| of a rotational node has vanished");
-    const auto [a, b] = this->p.geo.points(in, out.want_jacobian);  // flows use no derivative
-    const joint_bodies s{a, b, rotation_matrix(slot_quaternion(in.u, 3, 12)),
-                         rotation_matrix(slot_quaternion(in.u, 9, 13))};
+    const auto ab = this->p.geo.points(in, out.want_jacobian);  // flows use no derivative
+    const joint_bodies s{ab.first, ab.second};
     begin_exact_joint(out);
     constexpr int rows = Kind::passport.ent - 2;
     const Eigen::Matrix<double, rows, 1> mu = in.v.template segment<rows>(first_multiplier);

@@ -129,10 +129,10 @@ struct revolute_kind_t {
   void rows(const joint_bodies& s, const Mu& mu, Out& out, std::span<double> work) const {
     constexpr int r = first_multiplier;
     work[0] = add_point_rows(s.a, s.b, spatial::vec3(mu(0), mu(1), mu(2)), r, out).norm();
-    const spatial::vec3 ub = s.rb * eb;
-    add_perpendicular_row(s.a, s.b, s.ra * n1, ub, mu(3), r + 3, out);
-    add_perpendicular_row(s.a, s.b, s.ra * n2, ub, mu(4), r + 4, out);
-    work[4] = angle_between(s.ra * ea, ub);
+    const spatial::vec3 ub = s.b.r * eb;
+    add_perpendicular_row(s.a, s.b, s.a.r * n1, ub, mu(3), r + 3, out);
+    add_perpendicular_row(s.a, s.b, s.a.r * n2, ub, mu(4), r + 4, out);
+    work[4] = angle_between(s.a.r * ea, ub);
   }
 };
 
@@ -186,7 +186,7 @@ struct universal_kind_t {
   void rows(const joint_bodies& s, const Mu& mu, Out& out, std::span<double> work) const {
     constexpr int r = first_multiplier;
     work[0] = add_point_rows(s.a, s.b, spatial::vec3(mu(0), mu(1), mu(2)), r, out).norm();
-    const double c = add_perpendicular_row(s.a, s.b, s.ra * ea, s.rb * eb, mu(3), r + 3, out);
+    const double c = add_perpendicular_row(s.a, s.b, s.a.r * ea, s.b.r * eb, mu(3), r + 3, out);
     work[4] = std::asin(std::clamp(c, -1.0, 1.0));
   }
 };
@@ -242,7 +242,7 @@ struct cylindrical_kind_t {
   template <class Mu, class Out>
   void rows(const joint_bodies& s, const Mu& mu, Out& out, std::span<double> work) const {
     constexpr int r = first_multiplier;
-    const spatial::vec3 na1 = s.ra * n1, na2 = s.ra * n2, ua = s.ra * ea, ub = s.rb * eb;
+    const spatial::vec3 na1 = s.a.r * n1, na2 = s.a.r * n2, ua = s.a.r * ea, ub = s.b.r * eb;
     add_line_row(s.a, s.b, na1, mu(0), r, out);
     add_line_row(s.a, s.b, na2, mu(1), r + 1, out);
     add_perpendicular_row(s.a, s.b, na1, ub, mu(2), r + 2, out);
