@@ -179,8 +179,9 @@ struct local_input {
 /// passport declares. Absent blocks are of type absent_block and cannot be written.
 /// `want_jacobian` is false when the caller needs the flows only (the zero step,
 /// the iterations on a kept Jacobian): an element may then skip its blocks. The
-/// assembler hands the blocks over zeroed only when it is true, and reads them
-/// only then, so an element must never compute its flows from its own blocks.
+/// assembler hands the blocks over zeroed only when it is true (so an element may
+/// add to them; a super-element does the same for its parts: clear()), and reads
+/// them only then, so an element must never compute its flows from its own blocks.
 template <class E>
 struct local_output {
   using traits = element_traits<E>;
