@@ -295,6 +295,9 @@ TEST_SUITE("linalg") {
     for (int i = 0; i < 65; ++i) err = std::max(err, std::abs(x[static_cast<std::size_t>(i)] - xd(i)));
     CHECK(err < 1e-13 * std::max(1.0, xd.cwiseAbs().maxCoeff()));
     CHECK(lu.statistics().last_backward_error == -1.0);
+    std::ostringstream report;
+    lu.statistics().print(report);
+    CHECK(report.str().find("last backward error not measured (unchecked solve)") != std::string::npos);
     CHECK(lu.statistics().refinement_steps == steps);
     CHECK(lu.statistics().solves == 1);
     const auto b2 = rhs(65, 10u);

@@ -138,9 +138,10 @@ struct lu_statistics {
                   factorizations, solves, delayed_rows, reanalyses, perturbed_pivots, first_perturbed_row,
                   refinement_steps);
     os << buf;
-    std::snprintf(buf, sizeof buf,
-                  "  accuracy: pivot growth %.3g, last backward error %.3g, condition estimate %.3g%s\n",
-                  max_growth, last_backward_error, condition_estimate,
+    char eta[48] = "not measured (unchecked solve)";
+    if (last_backward_error >= 0) std::snprintf(eta, sizeof eta, "%.3g", last_backward_error);
+    std::snprintf(buf, sizeof buf, "  accuracy: pivot growth %.3g, last backward error %s, condition estimate %.3g%s\n",
+                  max_growth, eta, condition_estimate,
                   condition_estimate > 0 ? (ill_conditioned() ? " (near 1/eps)" : "") : " (not estimated)");
     os << buf;
     std::snprintf(buf, sizeof buf,
