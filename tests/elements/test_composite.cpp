@@ -60,16 +60,13 @@ struct warning_spring {
 /// with want_jacobian they arrive zeroed, so elements may add to them).
 struct adding_spring {
   static constexpr pradis::passport passport{.name = "ADDS", .ext = 2, .par = 1, .adr = 1, .ign = 23};
-  static constexpr element_help help{.title = "test spring that adds to its block",
-                                     .name = "test",
-                                     .field = "test",
-                                     .dofs = "1 - a\n2 - b",
-                                     .parameters = "1 - k",
-                                     .work = "",
-                                     .special = "code 100 never"};
-  struct parameters {
-    double k = 1;
-  } p;
+  static constexpr element_help help = [] {
+    element_help h = warning_spring::help;
+    h.title = "test spring that adds to its block";
+    return h;
+  }();
+  using parameters = warning_spring::parameters;
+  parameters p;
   static inline int dirty_blocks = 0;
   explicit adding_spring(parameters q) : p(q) {}
   static adding_spring from_parameters(std::span<const double> v) { return adding_spring({v[0]}); }
