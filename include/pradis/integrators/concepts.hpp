@@ -44,7 +44,10 @@ concept Integrator = std::copyable<S> && requires(const S s, double x, double& r
 /// The simulation keeps a factorisation across solves (modified Newton), so
 /// solve() must not disturb it. Optional: `solve(b1, b2)` for two right-hand
 /// sides at once (the BDF driver's stabilised constraints need two per
-/// iteration; without it, it calls solve() twice).
+/// iteration; without it, it calls solve() twice), and `solve_unchecked(b)` /
+/// `solve_unchecked(b1, b2)`, which the BDF corrector prefers: solves whose
+/// residual the solver need not check, because Newton's test judges them
+/// (sparse_lu::solve_unchecked).
 template <class S>
 concept LinearSolver = std::default_initializable<S> && std::movable<S> &&
                        requires(S s, const S cs, const linalg::sparsity_pattern& p, std::span<const double> values,
