@@ -235,4 +235,19 @@ TEST_CASE("a partial Jacobian (call_info::jacobian_types) assembles the listed e
   CHECK(value(full, b, b) == doctest::Approx(0.5 * 5.0 + 7.0 + 4.0 * 3.0));
   CHECK(as.residual()(a.index) == flows(a.index));
   CHECK(as.residual()(b.index) == flows(b.index));
+  // Restricted to the rows of b (as the BDF driver restricts G to its constraint rows):
+  // row b as before, bit for bit, row a not assembled; a full Jacobian is unaffected.
+  const std::vector<double> spring_part(as.values().begin(), as.values().end());
+  as.restrict_partial_rows({as.equation_of(b.index)});
+  as.evaluate(m, s, c, partial);
+  CHECK(value(as.values(), b, a) == value(spring_part, b, a));
+  CHECK(value(as.values(), b, b) == value(spring_part, b, b));
+  CHECK(value(as.values(), a, a) == 0.0);
+  CHECK(value(as.values(), a, b) == 0.0);
+  as.evaluate(m, s, c, call_info{0.0, 1e-3, 1, 0, true, nullptr});
+  CHECK(std::vector<double>(as.values().begin(), as.values().end()) == full);
+  // build() lifts the restriction.
+  as.build(m, prescribed);
+  as.evaluate(m, s, c, partial);
+  CHECK(std::vector<double>(as.values().begin(), as.values().end()) == spring_part);
 }

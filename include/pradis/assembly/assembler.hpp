@@ -143,7 +143,38 @@ class assembler<model<Es...>> {
     values_.assign(static_cast<std::size_t>(pattern_.nnz()), 0.0);
     residual_.setZero(nd);
     abs_sum_.setZero(nd);
+    partial_rows_ = false;
     built_version_ = m.topology_version();
+  }
+
+  /// Restricts the partial Jacobians (call_info::jacobian_types without want_jacobian)
+  /// to the entries on the equations `eqs`: only those rows of values() are then
+  /// assembled (the BDF driver reads G on its constraint rows alone). Empty: all rows.
+  /// build() lifts the restriction. Allocates; call it after build(), not per step.
+  void restrict_partial_rows(const std::vector<int>& eqs) {
+    partial_rows_ = !eqs.empty();
+    std::vector<char> keep(static_cast<std::size_t>(pattern_.n), 0);
+    for (const int e : eqs) keep.at(static_cast<std::size_t>(e)) = 1;
+    std::vector<int> row_of(static_cast<std::size_t>(pattern_.nnz()));
+    const auto& rp = pattern_.row_ptr;
+    for (int r = 0; r < pattern_.n; ++r)
+      for (int q = rp[static_cast<std::size_t>(r)]; q < rp[static_cast<std::size_t>(r) + 1]; ++q)
+        row_of[static_cast<std::size_t>(q)] = r;
+    (
+        [&] {
+          const auto& src = std::get<index_of<Es, Es...>()>(maps_);
+          auto& dst = std::get<index_of<Es, Es...>()>(partial_maps_);
+          dst.first.assign(src.first.size(), 0);
+          dst.entries.clear();
+          for (std::size_t i = 0; i + 1 < src.first.size(); ++i) {
+            for (int k = src.first[i]; k < src.first[i + 1]; ++k) {
+              const scatter_entry& e = src.entries[static_cast<std::size_t>(k)];
+              if (keep[static_cast<std::size_t>(row_of[static_cast<std::size_t>(e.slot)])]) dst.entries.push_back(e);
+            }
+            dst.first[i + 1] = static_cast<int>(dst.entries.size());
+          }
+        }(),
+        ...);
   }
 
   /// Whether build() was run for the model's current topology.
@@ -152,7 +183,8 @@ class assembler<model<Es...>> {
   /// Evaluates every element at the global state `s`: sums the flows into the
   /// residual (all DOFs) and |flows| into abs_sum (for DRLTI), and, if
   /// info.want_jacobian, assembles J = cu K + cv C + ca M into values() (with
-  /// info.jacobian_types instead, the part of J from those element types).
+  /// info.jacobian_types instead, the part of J from those element types, on the
+  /// rows of restrict_partial_rows() if it was called).
   /// Never allocates. Element errors propagate as pradis::error; a non-finite
   /// flow or Jacobian entry raises error_code::non_finite naming the instance.
   void evaluate(model_type& m, const global_state& s, const jacobian_coefficients& c, const call_info& info) {
@@ -166,7 +198,8 @@ class assembler<model<Es...>> {
     ctx.nstep = info.nstep;
     ctx.niter = info.niter;
     std::size_t ti = 0;
-    (evaluate_type<Es>(m, s, c, info, ctx, std::get<index_of<Es, Es...>()>(maps_), ti++), ...);
+    const auto& maps = partial_rows_ && !info.want_jacobian && info.jacobian_types ? partial_maps_ : maps_;
+    (evaluate_type<Es>(m, s, c, info, ctx, std::get<index_of<Es, Es...>()>(maps), ti++), ...);
     evaluate_rotation_nodes(m, s, c, info, ctx);
     recommended_step_ = ctx.recommended_step;
   }
@@ -345,6 +378,8 @@ class assembler<model<Es...>> {
   std::vector<int> eq_of_dof_, dof_of_eq_;
   linalg::sparsity_pattern pattern_;
   std::tuple<scatter_map<Es>...> maps_;
+  std::tuple<scatter_map<Es>...> partial_maps_;  // maps_ on the rows of restrict_partial_rows()
+  bool partial_rows_ = false;
   std::vector<double> values_;
   Eigen::VectorXd residual_, abs_sum_;
   double recommended_step_ = 0;

@@ -336,6 +336,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
         asm_, index3_, bopt_.stabilised_index2 && !bdf_detail::driven_constraint(m_, index3_, prescribed_), index2_,
         stab_);
     constraint_types_ = bdf_detail::constraint_types(m_, index3_);
+    asm_.restrict_partial_rows(stab_.rows);  // G is read on the constraint rows alone
     double h = opt_.smin;
     set_weights(opt_.error_control ? 0.001 * (opt_.end - t_) : h);
     if (opt_.error_control) {
