@@ -37,6 +37,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "dense_test_solver.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/bdf/bdf_simulation.hpp"
 
@@ -112,28 +113,7 @@ bdf3_run bdf3_tracked(bdf3_chain& c, Sim& sim, double end, double tol) {
 
 /// A user's dense LU with a plain solve() only (no two-right-hand-side or unchecked
 /// solve): the BDF corrector falls back to two solve() calls per iteration.
-class dense_solve_only {
- public:
-  void analyze(const linalg::sparsity_pattern& p) { pattern_ = p; }
-  void factorize(std::span<const double> values) {
-    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(pattern_.n, pattern_.n);
-    for (int r = 0; r < pattern_.n; ++r)
-      for (int q = pattern_.row_ptr[static_cast<std::size_t>(r)]; q < pattern_.row_ptr[static_cast<std::size_t>(r) + 1];
-           ++q)
-        a(r, pattern_.col[static_cast<std::size_t>(q)]) = values[static_cast<std::size_t>(q)];
-    lu_.compute(a);
-  }
-  void solve(std::span<double> b) const {
-    Eigen::Map<Eigen::VectorXd> x(b.data(), static_cast<Eigen::Index>(b.size()));
-    x = lu_.solve(Eigen::VectorXd(x));
-    ++solves;
-  }
-  mutable long solves = 0;
-
- private:
-  linalg::sparsity_pattern pattern_;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu_;
-};
+using dense_solve_only = pradis_test::dense_test_solver<Eigen::FullPivLU<Eigen::MatrixXd>>;
 
 /// sparse_lu with its two-right-hand-side solve but without solve_unchecked (the
 /// corrector's middle fallback), counting the unchecked solves it never gets.

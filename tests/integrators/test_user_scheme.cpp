@@ -16,6 +16,7 @@
 #include <sstream>
 #include <vector>
 
+#include "dense_test_solver.hpp"
 #include "integrator_test_support.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/simulation.hpp"
@@ -43,27 +44,7 @@ static_assert(!AlphaFamilyIntegrator<user_trapezoidal>);
 static_assert(Integrator<alpha_family> && AlphaFamilyIntegrator<alpha_family>);
 
 /// A user's dense LU solver for small models: CSR values into a dense matrix.
-class user_dense_lu {
- public:
-  void analyze(const linalg::sparsity_pattern& p) { pattern_ = p; }
-  void factorize(std::span<const double> values) {
-    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(pattern_.n, pattern_.n);
-    for (int r = 0; r < pattern_.n; ++r)
-      for (int q = pattern_.row_ptr[static_cast<std::size_t>(r)]; q < pattern_.row_ptr[static_cast<std::size_t>(r) + 1]; ++q)
-        a(r, pattern_.col[static_cast<std::size_t>(q)]) = values[static_cast<std::size_t>(q)];
-    lu_.compute(a);
-    ++factorizations;
-  }
-  void solve(std::span<double> b) const {
-    Eigen::Map<Eigen::VectorXd> x(b.data(), static_cast<Eigen::Index>(b.size()));
-    x = lu_.solve(Eigen::VectorXd(x));
-  }
-  int factorizations = 0;
-
- private:
-  linalg::sparsity_pattern pattern_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
-};
+using user_dense_lu = pradis_test::dense_test_solver<>;
 struct no_solve {
   void analyze(const linalg::sparsity_pattern&) {}
   void factorize(std::span<const double>) {}
