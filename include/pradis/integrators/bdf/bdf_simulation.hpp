@@ -31,8 +31,9 @@
 ///
 /// Newton (IDA's): modified Newton with the Jacobian and its factorisation kept
 /// across iterations and steps; the iteration converges when
-/// rate / (1 - rate) |dy| <= bdf_options::newton_tolerance in the error norm,
-/// and fails when the rate exceeds newton_options::max_rate or after
+/// rate / (1 - rate) |dy| <= bdf_options::newton_tolerance in the error norm
+/// (bdf_options::raise_test_tolerance on a step whose correction enters the
+/// order-raise test), and fails when the rate exceeds newton_options::max_rate or after
 /// newton_options::itr iterations. The Jacobian is refreshed when c changed by
 /// more than bdf_options::coefficient_change (default: at all) since the factorisation (a kept
 /// one has its corrections scaled by 2 / (1 + c / c_J)), at the start of every
@@ -365,8 +366,10 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     hist_.predict(y_p_, yp_p_);
     const long iter0 = stats_.newton_iterations;
     bdf_detail::newton_memory mem{jac_valid_, c_jac_, ss_};
+    const bool raise_test = opt_.error_control && hist_.raise_test_due(bopt_.max_order, bopt_.fixed_order);
     const bool ok = bdf_detail::correct(
-        asm_, solver_, s_, y_p_, yp_p_, c, hist_.c_last(), w_, opt_.newton, bopt_.newton_tolerance,
+        asm_, solver_, s_, y_p_, yp_p_, c, hist_.c_last(), w_, opt_.newton,
+        raise_test ? bopt_.raise_test_tolerance : bopt_.newton_tolerance,
         bopt_.coefficient_change, mem, rhs_, dy_, stats_, last_failure_, stab_.rows.empty() ? nullptr : &stab_,
         rates_.empty() ? nullptr : &rates_, turned_.empty() ? nullptr : &turned_,
         [&](const jacobian_coefficients& jc, bool jac, bool rows, int k) {

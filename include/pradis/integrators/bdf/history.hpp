@@ -126,6 +126,14 @@ class history {
     }
   }
 
+  /// The step about to be attempted (after set_coefficients()) is one whose
+  /// correction enters the test for raising the order in complete() with
+  /// error control: the order has been kept for k + 2 steps of this size, and
+  /// it is below max_order (and not fixed).
+  bool raise_test_due(int max_order, bool fixed) const noexcept {
+    return phase_ == 1 && !fixed && k_ < max_order && k_ + 1 < ns_ && k_ == kused_;
+  }
+
   /// Scales row r of the history (component r of y and of its differences) by f:
   /// the history of the motion with that component scaled, for a model invariant
   /// under the scaling (rotations.hpp).

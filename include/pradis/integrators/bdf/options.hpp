@@ -33,6 +33,14 @@ struct bdf_options {
   /// norm of the error test, is below this fraction of the error tolerance
   /// (IDA's epcon, default 0.33).
   double newton_tolerance = 0.33;
+  /// The Newton tolerance, as newton_tolerance, of a step whose correction
+  /// enters the test for raising the order (with error control, every k + 2
+  /// steps of equal size at order k < max_order). That test weighs the
+  /// difference of two successive corrections, which the corrector's remaining
+  /// error disturbs more than the error test itself. Default 0.033, a tenth of
+  /// newton_tolerance; equal to newton_tolerance: no such step is treated
+  /// apart (the measurements are in docs/bdf.md, "The order-raise test").
+  double raise_test_tolerance = 0.033;
   /// The first step of a stage: 0 selects it as IDA does (0.001 of the stage,
   /// at most 0.5 / |y'| in the weighted norm); else this step (clamped to
   /// [SMIN, SMAX]). Used only with error control: without it the run starts at
@@ -94,6 +102,8 @@ inline std::optional<std::string> check_bdf_options(const bdf_options& o) {
            std::to_string(bdf_highest_order);
   if (!(o.newton_tolerance > 0 && o.newton_tolerance <= 1))
     return "the Newton tolerance " + num(o.newton_tolerance) + " must be in (0, 1]";
+  if (!(o.raise_test_tolerance > 0 && o.raise_test_tolerance <= 1))
+    return "the Newton tolerance of the order-raise test " + num(o.raise_test_tolerance) + " must be in (0, 1]";
   if (!(o.initial_step >= 0) || o.initial_step == std::numeric_limits<double>::infinity())
     return "the initial step " + num(o.initial_step) + " must be a finite number >= 0";
   if (!(o.coefficient_change >= 0) || o.coefficient_change == std::numeric_limits<double>::infinity())
