@@ -9,7 +9,8 @@
 // reference from a closed form, CPU time = minimum of 3 runs after one warm-up,
 // all solvers in one process. pradis's series: every one-step scheme under error
 // control and with fixed steps, the BDF driver ("BDF"), on topx and chain the
-// BDF driver in its plain index-3 form ("BDF-index3"), and on the free body, top and
+// BDF driver in its plain index-3 form ("BDF-index3"), on topx the top with its node
+// at the tip and no joint ("BDF-pivot"), and on the free body, top and
 // topx with the rate form ("BDF-rates") and with the kept Newton matrix not turned
 // ("BDF-unturned"), and on the free body with it turned in the global frame only
 // ("BDF-global"). Tolerance sweeps (rtol = atol):
@@ -519,6 +520,8 @@ struct pradis_setting {
 struct bdf_method {
   static constexpr std::string_view name = "BDF";
   pradis::bdf_options options{};
+  /// topx only: the top with its node at the tip and no joint (top_parameters::pivot).
+  bool pivot = false;
 };
 
 /// Runs f(sim) on a simulation of m with the scheme (or the BDF driver).
@@ -614,6 +617,7 @@ run_result run_pradis(const problem& pb, Scheme scheme, const pradis_setting& st
   } else if (pb.name == "topx") {
     pradis_examples::top_parameters tp;
     tp.exact_joint = true;
+    if constexpr (std::is_same_v<Scheme, bdf_method>) tp.pivot = scheme.pivot;
     pradis_examples::spinning_top t(tp);
     with_simulation(t.m, scheme, [&](auto& sim) { finish_rotation(sim, t.r); });
   } else if (pb.name == "chain") {
@@ -1151,6 +1155,9 @@ struct bench {
       // with its default stabilised index-2 form (docs/bdf.md, "Index-3 constraints").
       if (pb.name == "topx" || pb.name == "chain")
         pradis_sweeps(pb, bdf_method{{.stabilised_index2 = false}}, "BDF-index3", false);
+      // topx also as the motion about a fixed point: the node at the tip, no joint
+      // (top_parameters::pivot), the formulation the peers integrate.
+      if (pb.name == "topx") pradis_sweeps(pb, bdf_method{.pivot = true}, "BDF-pivot", false);
       // The rotational problems also with BDF's rotational nodes in the rate form and
       // with the kept Newton matrix not turned (docs/bdf.md, "Rotational nodes", "Newton").
       if (pb.name == "freebody" || pb.name == "top" || pb.name == "topx") {

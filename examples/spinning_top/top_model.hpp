@@ -21,13 +21,17 @@ struct top_parameters {
   double theta0 = 30 * std::numbers::pi / 180;  ///< initial tilt [rad]
   double k = 1e6;         ///< joint penalty stiffness [N/m] (SPH3; unused with exact_joint)
   bool exact_joint = false;  ///< hold the tip with the exact SPH3X instead of the penalty SPH3
+  /// No joint: BODY3's reference point is the tip itself (translations grounded, centre of mass
+  /// l along body Z from it) and the weight is F3A at the centre of mass (overrides exact_joint).
+  bool pivot = false;
 };
 
 /// A rigid body (BODY3) symmetric about its Z axis, its tip held at the origin by a
 /// spherical joint (SPH3, penalty stiffness k, or the exact SPH3X), under gravity (a
 /// constant F3 on the centre of mass), spinning at w3 about its axis, released at
 /// theta0 from the vertical with no precession or nutation rate (Goldstein, Classical
-/// Mechanics, 3rd ed., section 5.7).
+/// Mechanics, 3rd ed., section 5.7). With `pivot` the same top has its node at the tip
+/// and no joint: the rotational node alone, the motion about a fixed point.
 struct spinning_top {
   static constexpr double g = 9.81;
   double mass;        ///< mass [kg]
@@ -38,13 +42,14 @@ struct spinning_top {
   double theta0;      ///< initial tilt [rad]
   double k;           ///< joint penalty stiffness [N/m]
   bool exact_joint;   ///< SPH3X instead of SPH3
+  bool pivot;         ///< node at the tip, no joint
 
   using model_type =
       pradis::model<pradis::elements::rigid_body, pradis::elements::spherical_joint,
                     pradis::elements::exact_spherical_joint, pradis::elements::spatial_force,
-                    pradis::elements::initial_rotation>;
+                    pradis::elements::offset_force, pradis::elements::initial_rotation>;
   model_type m;
-  std::vector<pradis::dof> x;  ///< the centre of mass
+  std::vector<pradis::dof> x;  ///< the centre of mass (with `pivot`: the tip, three times the ground)
   pradis::rotation_node r;     ///< the top's orientation
 
   /// Damping of the joint's stiff mode, 0.4 sqrt(k m) (a damping ratio of 0.2) [N s/m].
@@ -54,20 +59,28 @@ struct spinning_top {
   pradis::spatial::vec3 axis0() const { return {0, -std::sin(theta0), std::cos(theta0)}; }
 
   explicit spinning_top(const top_parameters& p = {})
-      : mass(p.mass), l(p.l), j1(p.j1), j3(p.j3), w3(p.w3), theta0(p.theta0), k(p.k), exact_joint(p.exact_joint) {
+      : mass(p.mass), l(p.l), j1(p.j1), j3(p.j3), w3(p.w3), theta0(p.theta0), k(p.k), exact_joint(p.exact_joint),
+        pivot(p.pivot) {
     using namespace pradis::elements;
-    x = m.add_dofs(3, "x");
-    r = m.add_rotation_node("r");
     const pradis::dof G = m.ground();
     const pradis::spatial::vec3 a = axis0();
-    m.add<rigid_body>("top", {mass, j1, j1, j3, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
-    // Joint point A: the origin (ground); B: the tip, l below the centre of mass along body Z.
-    const pradis::elements::detail::joint_geometry tip{0, 0, 0, 0, 0, 0, l * a.x(), l * a.y(), l * a.z(), 0, 0, -l};
-    if (exact_joint)
-      m.add<exact_spherical_joint>("tip", {tip}, G, G, G, G, G, G, x[0], x[1], x[2], r);
-    else
-      m.add<spherical_joint>("tip", {tip, k, joint_damping()}, G, G, G, G, G, G, x[0], x[1], x[2], r);
-    m.add<spatial_force>("gravity", {0, 0, -mass * g, 0, 0, 0, 0, 0}, x[0], x[1], x[2]);
+    if (pivot) {
+      x = {G, G, G};
+      r = m.add_rotation_node("r");
+      m.add<rigid_body>("top", {mass, j1, j1, j3, 0, 0, 0, 0, 0, l}, G, G, G, r);
+      m.add<offset_force>("gravity", {0, 0, l, {0, 0, -mass * g, 0, 0, 0, 0, 0}}, G, G, G, r);
+    } else {
+      x = m.add_dofs(3, "x");
+      r = m.add_rotation_node("r");
+      m.add<rigid_body>("top", {mass, j1, j1, j3, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
+      // Joint point A: the origin (ground); B: the tip, l below the centre of mass along body Z.
+      const pradis::elements::detail::joint_geometry tip{0, 0, 0, 0, 0, 0, l * a.x(), l * a.y(), l * a.z(), 0, 0, -l};
+      if (exact_joint)
+        m.add<exact_spherical_joint>("tip", {tip}, G, G, G, G, G, G, x[0], x[1], x[2], r);
+      else
+        m.add<spherical_joint>("tip", {tip, k, joint_damping()}, G, G, G, G, G, G, x[0], x[1], x[2], r);
+      m.add<spatial_force>("gravity", {0, 0, -mass * g, 0, 0, 0, 0, 0}, x[0], x[1], x[2]);
+    }
     m.add<initial_rotation>("start", {1, 0, 0, theta0 * 180 / std::numbers::pi, w3 * a.x(), w3 * a.y(), w3 * a.z()},
                             r);
   }

@@ -485,13 +485,15 @@ TEST_SUITE("core/allocation") {
     CHECK(std::isfinite(sim.v(dof{m.dof_count() - 2})));
   }
 
-  TEST_CASE("steps of a spatial model (BODY3, M3B, F3B on a rotational node with its norm equation) do not allocate") {
-    model<rigid_body, body_torque, body_force, initial_rotation> m;
+  TEST_CASE("steps of a spatial model (BODY3, M3B, F3B, F3A on a rotational node with its norm equation) "
+            "do not allocate") {
+    model<rigid_body, body_torque, body_force, offset_force, initial_rotation> m;
     const auto x = m.add_dofs(3, "x");
     const rotation_node r = m.add_rotation_node("r");
     m.add<rigid_body>("body", rigid_body::example(), x[0], x[1], x[2], r);
     m.add<body_torque>("torque", body_torque::example(), r);
     m.add<body_force>("force", body_force::example(), x[0], x[1], x[2], r);
+    m.add<offset_force>("weight", offset_force::example(), x[0], x[1], x[2], r);
     m.add<initial_rotation>("start", initial_rotation::example(), r);
     simulation sim(m);
     sim.run({.end = 1e-3, .smax = 1e-3});

@@ -28,7 +28,7 @@ constexpr std::string_view code100_situation(std::string_view name) {
   if (name == "LINKD" || name == "LINKX") return "coincide";
   if (name == "MEKS") return "R < 0";
   if (name == "BODY3") return "not positive definite";
-  if (name == "F3" || name == "M3" || name == "F3B" || name == "M3B") return "f < 0";
+  if (name == "F3" || name == "M3" || name == "F3B" || name == "F3A" || name == "M3B") return "f < 0";
   if (name == "ROT0") return "changed after the zero step";
   if (name == "SD3" || name == "RSD3") return "k < 0";
   if (name == "SPH3") return "k <= 0";
@@ -85,9 +85,10 @@ void check_special() {
   if (name == "XSRC" || name == "VSRC" || name == "X0" || name == "V0" || name == "VDC" || name == "VSIN" ||
       name == "VTAB" || name == "PNSRC" || name == "PNVOL" || name == "PNCHP" || name == "PNCYL")
     CHECK(special.find("code 90") != std::string::npos);
-  if (name == "LINKD" || name == "BODY3" || name == "F3B" || name == "M3B" || name == "SD3" || name == "RSD3" ||
-      name == "SPH3" || name == "REV3" || name == "BEAM3" || name == "BEAM3C" || name == "BEAMI3" || name == "SHC3" || name == "HVOL" ||
-      name == "HCYL" || name == "HACC" || name == "ELLPL" || name == "PNVOL" || name == "PNCHP" || name == "PNCYL" ||
+  if (name == "LINKD" || name == "BODY3" || name == "F3B" || name == "F3A" || name == "M3B" || name == "SD3" ||
+      name == "RSD3" || name == "SPH3" || name == "REV3" || name == "BEAM3" || name == "BEAM3C" || name == "BEAMI3" ||
+      name == "SHC3" || name == "HVOL" || name == "HCYL" || name == "HACC" || name == "ELLPL" || name == "PNVOL" ||
+      name == "PNCHP" || name == "PNCYL" ||
       name == "PNORF" || name == "CSPHPL" || name == "CSPHSP" || name == "THROW" || name == "THROWP" ||
       name == "FLEX3")
     CHECK(special.find("code 75") != std::string::npos);
@@ -103,7 +104,7 @@ void check_all_special(pradis::type_list<Es...>) {
 
 TEST_SUITE("elements/help") {
   TEST_CASE("the help text of every library element names its code-100 situations (and 90 / 75 where they apply)") {
-    static_assert(pradis::elements::library_elements::size == 82);
+    static_assert(pradis::elements::library_elements::size == 83);
     check_all_special(pradis::elements::library_elements{});
   }
 }

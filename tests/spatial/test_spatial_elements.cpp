@@ -1,9 +1,10 @@
 // Rotational nodes in the model (a hidden q4 shared by every element on a node,
 // its norm equation once per node, fixed angular components, code 110 for a
-// wrong connection) and the spatial elements BODY3, F3, M3, F3B, M3B, ROT0 in
-// small scenes with exact solutions: rotation about a fixed axis under a
+// wrong connection) and the spatial elements BODY3, F3, M3, F3B, F3A, M3B, ROT0
+// in small scenes with exact solutions: rotation about a fixed axis under a
 // constant moment (theta = M t^2 / (2 J)), a spinning body driven by a
-// body-fixed force (closed-form translation), a body-fixed torque, a free body
+// body-fixed force (closed-form translation), a compound pendulum swung by its
+// weight at an offset point (the exact large-amplitude period), a body-fixed torque, a free body
 // with an offset centre of mass (conservation of momentum, angular momentum and
 // energy: Newton-Euler), a harmonic force (double integral of the load), and the
 // bad inputs (codes 100, 75, 90) with element, instance and message. The same
@@ -209,6 +210,53 @@ TEST_SUITE("spatial/elements") {
     CHECK(worst < 1e-6);
   }
 
+  TEST_CASE("F3A: the weight at the centre of mass of a body pivoting about its node gives the exact pendulum period") {
+    // Compound pendulum: BODY3 with its reference point P at the pivot (translations grounded) and
+    // its centre of mass at c = (0, 0, -l) in body axes; F3A applies the weight (0, 0, -m g) at c.
+    // Released from rest at theta0 = 90 degrees about X, it swings about X with the exact period
+    // T = 4 sqrt(I_P / (m g l)) K(sin(theta0 / 2)), I_P = Jxx + m l^2 (the simple pendulum of length
+    // I_P / (m l): Landau & Lifshitz, Mechanics, section 11, problem 1; section 42 for the compound
+    // pendulum), K(k) = pi / (2 AGM(1, sqrt(1 - k^2))). At T/2 it is at rest at -theta0, at T back at theta0.
+    const double mass = 2.0, l = 0.5, jxx = 0.05, theta0 = pi / 2, g = pradis_spatial_tests::g;
+    const double ip = jxx + mass * l * l;
+    double a = 1, b = std::sqrt(1 - std::pow(std::sin(theta0 / 2), 2));
+    for (int i = 0; i < 8; ++i) {
+      const double an = (a + b) / 2;
+      b = std::sqrt(a * b);
+      a = an;
+    }
+    const double period = 4 * std::sqrt(ip / (mass * g * l)) * pi / (2 * a);
+    model<rigid_body, offset_force, initial_rotation> m;
+    const dof G = m.ground();
+    const rotation_node r = m.add_rotation_node("r");
+    m.add<rigid_body>("body", {mass, jxx, jxx, 0.02, 0, 0, 0, 0, 0, -l}, G, G, G, r);
+    const auto w = m.add<offset_force>("weight", {0, 0, -l, {0, 0, -mass * g, 0, 0, 0, 0, 0}}, G, G, G, r);
+    m.add<initial_rotation>("start", {1, 0, 0, theta0 * 180 / pi, 0, 0, 0}, r);
+    simulation sim(m);
+    const double h = 1e-3;
+    sim.run({.end = period / 2, .smax = h, .newton = tight_newton});
+    const double half_angle = angle_between(node_quaternion(sim, r), from_axis_angle(vec3::UnitX(), -theta0));
+    const double half_rate = node_angular_velocity(sim, r).norm();
+    // W(4..6): the weight's moment about the pivot, rho x F = (m g l sin(theta0), 0, 0) at -theta0.
+    const auto work = m.work(w);
+    CHECK(work[3] == doctest::Approx(mass * g * l * std::sin(theta0)).epsilon(1e-6));
+    CHECK(std::abs(work[4]) < 1e-9);
+    CHECK(std::abs(work[5]) < 1e-9);
+    sim.run({.end = period, .smax = h, .newton = tight_newton});
+    const double end_angle = angle_between(node_quaternion(sim, r), from_axis_angle(vec3::UnitX(), theta0));
+    const double end_rate = node_angular_velocity(sim, r).norm();
+    MESSAGE("F3A pendulum: T = ", period, " s; at T/2 angle error ", half_angle, " rad, rate ", half_rate,
+            " rad/s; at T ", end_angle, " rad, ", end_rate, " rad/s (peak rate ",
+            2 * std::sqrt(mass * g * l / ip) * std::sin(theta0 / 2), " rad/s)");
+    // Trapezoidal period error (w h)^2 / 12 = 1.5e-6 of T, w = sqrt(m g l / I_P) = 4.2 rad/s: the rate at
+    // the turning point is then about (m g l / I_P) dT / 2 = 2e-5 rad/s (measured 2.4e-5 at T/2, 4.8e-5 at T);
+    // a 1e-3 error in the moment would give about 1.6e-2.
+    CHECK(half_angle < 1e-5);
+    CHECK(half_rate < 2e-4);
+    CHECK(end_angle < 1e-5);
+    CHECK(end_rate < 4e-4);
+  }
+
   TEST_CASE("F3: a constant plus harmonic global force moves a free body along the double integral of the load") {
     // m x'' = P0 + A sin(W t + phi): x = P0 t^2/(2m) + A/m [(sin phi - sin(W t + phi))/W^2 + t cos(phi)/W].
     const double mass = 1.5;
@@ -359,15 +407,15 @@ TEST_SUITE("spatial/elements") {
     CHECK(sim.time() > 0.5);
   }
 
-  TEST_CASE("F3, M3, F3B, M3B refuse a negative frequency or a non-finite load (100) and a wrong count (101)") {
+  TEST_CASE("F3, M3, F3B, F3A, M3B refuse a negative frequency or a non-finite load (100) and a wrong count (101)") {
     const spatial_load_parameters negative_f{1, 0, 0, 1, 0, 0, -2.0, 0};
     const spatial_load_parameters infinite{std::numeric_limits<double>::infinity(), 0, 0, 0, 0, 0, 1.0, 0};
-    model<rigid_body, spatial_force, spatial_torque, body_force, body_torque> m0;
-    for (int which = 0; which < 4; ++which)
+    model<rigid_body, spatial_force, spatial_torque, body_force, body_torque, offset_force> m0;
+    for (int which = 0; which < 5; ++which)
       for (int bad = 0; bad < 2; ++bad) {
         const spatial_load_parameters lp = bad == 0 ? negative_f : infinite;
         const char* mention = bad == 0 ? "frequency f" : "must be finite";
-        model<rigid_body, spatial_force, spatial_torque, body_force, body_torque> m;
+        model<rigid_body, spatial_force, spatial_torque, body_force, body_torque, offset_force> m;
         const auto x = m.add_dofs(3);
         const rotation_node r = m.add_rotation_node("r");
         m.add<rigid_body>("body", body(1, 1, 1, 1), x[0], x[1], x[2], r);
@@ -388,6 +436,10 @@ TEST_SUITE("spatial/elements") {
           type = "M3B";
           m.add<body_torque>("load", lp, r);
         }
+        if (which == 4) {
+          type = "F3A";
+          m.add<offset_force>("load", {0, 0, 1, lp}, x[0], x[1], x[2], r);
+        }
         CAPTURE(type);
         simulation sim(m);
         check_error(error_from([&] { sim.run({.end = 0.1, .smax = 0.01}); }), error_code::invalid_parameter, type,
@@ -402,6 +454,18 @@ TEST_SUITE("spatial/elements") {
     }
     check_error(error_from([&] { m0.add_by_name("F3B", "nF3B", d, seven); }), error_code::parameter_count, "F3B",
                 "nF3B", "got 7 parameters");
+    check_error(error_from([&] { m0.add_by_name("F3A", "nF3A", d, seven); }), error_code::parameter_count, "F3A",
+                "nF3A", "got 7 parameters");
+    // F3A's offset must be finite as well.
+    model<rigid_body, offset_force> m1;
+    const auto x1 = m1.add_dofs(3);
+    const rotation_node r1 = m1.add_rotation_node("r");
+    m1.add<rigid_body>("body", body(1, 1, 1, 1), x1[0], x1[1], x1[2], r1);
+    m1.add<offset_force>("load", {0, std::numeric_limits<double>::quiet_NaN(), 1, {0, 0, -1, 0, 0, 0, 0, 0}}, x1[0],
+                         x1[1], x1[2], r1);
+    simulation sim1(m1);
+    check_error(error_from([&] { sim1.run({.end = 0.1, .smax = 0.01}); }), error_code::invalid_parameter, "F3A", "load",
+                "offset of the point of application must be finite");
     check_error(error_from([&] { m0.add_by_name("BODY3", "nB", d, seven); }), error_code::parameter_count, "BODY3",
                 "nB", "got 7 parameters");
   }

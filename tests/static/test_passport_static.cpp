@@ -61,7 +61,8 @@ static_assert(pradis::element_traits<planar_link>::has_k && !pradis::element_tra
 static_assert(pradis::element_traits<planar_inertia>::has_m && !pradis::element_traits<planar_inertia>::has_k);
 // Absent blocks take no storage in the local output.
 static_assert(sizeof(pradis::local_output<linear_spring>) < sizeof(pradis::local_output<eccentric_mass>));
-static_assert(pradis::library_model::element_types::size == 82);  // 49 mechanical + 12 hydraulic + 15 electric + 6 pneumatic
+// 50 mechanical + 12 hydraulic + 15 electric + 6 pneumatic
+static_assert(pradis::library_model::element_types::size == 83);
 // Two rotational nodes: SD3 has a's q1..q3 at 3..5 (q4 at 12) and b's at 9..11 (q4 at 13).
 static_assert(pradis::element_traits<spatial_spring_damper>::rotations == 2);
 static_assert(pradis::element_traits<spatial_spring_damper>::rotation_nodes[1] == pradis::rotation_slot{9, 13});

@@ -66,7 +66,8 @@ using mech1d_elements =
 using planar_elements =
     type_list<planar_inertia, planar_link, eccentric_mass, planar_rigid_link, planar_pin_joint, ellipse_contact>;
 /// Spatial mechanics (rotational nodes with the hidden fourth potential, docs/rotations.md).
-using spatial_elements = type_list<rigid_body, spatial_force, spatial_torque, body_force, body_torque, initial_rotation>;
+using spatial_elements =
+    type_list<rigid_body, spatial_force, spatial_torque, body_force, offset_force, body_torque, initial_rotation>;
 // --- spatial connecting elements (SD3, RSD3, SPH3, REV3, SHC3 and the exact joints) ---
 /// Spatial connecting elements: spring-dampers and penalty joints between bodies, the
 /// shaft coupling from a one-dimensional rotation to a spatial node (docs/rotations.md),

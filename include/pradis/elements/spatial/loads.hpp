@@ -1,7 +1,8 @@
 #pragma once
 /// \file
-/// F3, F3B, M3, M3B: force and torque sources in spatial motion, constant plus
-/// harmonic, in global axes or fixed to a rotational node (body axes).
+/// F3, F3B, F3A, M3, M3B: force and torque sources in spatial motion, constant plus
+/// harmonic, in global axes or fixed to a rotational node (body axes); F3A applies a
+/// global force at a point fixed to a body (a weight at an offset centre of mass).
 
 #include <array>
 #include <cmath>
@@ -172,6 +173,89 @@ struct body_force_t {
   }
   /// States the checks may use: the quaternion norm is not near zero.
   bool admissible(const local_input<body_force>& in) const { return in.u.segment<4>(3).norm() > 0.2; }
+};
+
+template <class = void>
+struct offset_force_t;
+/// The element type (a class template so that units that do not use it skip its members: docs/adding-an-element.md).
+using offset_force = offset_force_t<>;
+/// F3A: force P(t) = P0 + A sin(2 pi f t + phase) in global axes, applied at a point
+/// fixed to a body: offset c (body frame) from the body's reference point x, y, z, whose
+/// orientation is the rotational node q. With rho = R(q) c the flows are -P on x, y, z
+/// and -(rho x P) on q1, q2, q3 (the moment about the reference point), none on q4;
+/// d(-(rho x P))/dq = -[P x][rho x] (2/s) E(q) (drho = dtheta x rho,
+/// dtheta = (2/s) E(q) dq). The weight of a body whose reference point is not its
+/// centre of mass, e.g. a top or a pendulum whose node sits at its pivot.
+template <class>
+struct offset_force_t {
+  static constexpr pradis::passport passport{
+      .name = "F3A", .ext = 6, .ent = 1, .par = 11, .wrk = 6, .adr = 1, .ign = 23};
+  /// q1..q3 are local DOFs 4..6, the hidden q4 the internal DOF 7.
+  static constexpr std::array<rotation_slot, 1> rotation_nodes{{{3, 6}}};
+  static constexpr element_help help{
+      .title = "force in global axes at a point fixed to a body in spatial motion",
+      .name = "Source of a force P0 + A sin(2 pi f t + phase), global axes, at an offset point of a body [N]",
+      .field = "mechanics, spatial motion",
+      .dofs = "1 - translation of the body's reference point along X [m]\n"
+              "2 - translation along Y [m]\n"
+              "3 - translation along Z [m]\n"
+              "4 - rotation potential q1 of the body's rotational node (flow: moment about X) [-]\n"
+              "5 - rotation potential q2 (flow: moment about Y) [-]\n"
+              "6 - rotation potential q3 (flow: moment about Z) [-]",
+      .parameters = "1 - x of the point of application from the reference point, body frame [m]\n"
+                    "2 - y of the point of application, body frame [m]\n"
+                    "3 - z of the point of application, body frame [m]\n"
+                    "4 - constant part P0, X component (global) [N]\n"
+                    "5 - constant part P0, Y component\n"
+                    "6 - constant part P0, Z component\n"
+                    "7 - amplitude A, X component\n"
+                    "8 - amplitude A, Y component\n"
+                    "9 - amplitude A, Z component\n"
+                    "10 - frequency f [Hz] (>= 0)\n"
+                    "11 - phase [deg]",
+      .work = "1 - current force, X [N]\n2 - current force, Y [N]\n3 - current force, Z [N]\n"
+              "4 - its moment about the reference point, X [N m]\n5 - moment, Y [N m]\n6 - moment, Z [N m]",
+      .special = "code 100 if f < 0 or a parameter is not finite; code 75 if the quaternion norm comes near zero; "
+                 "recommends a step of at most 1/(20 f)"};
+  /// Typed parameters, in PAR order.
+  struct parameters {
+    double cx = 0, cy = 0, cz = 0;  ///< point of application from the reference point (body frame) [m]
+    spatial_load_parameters load;   ///< the force P(t), global axes [N]
+  };
+  parameters p;
+  explicit offset_force_t(parameters q) : p(q) {}
+  /// Example parameters (used by `pradis check` and the all-elements test).
+  static parameters example() { return {0.3, -0.2, 0.5, {1.0, -2.0, 0.5, 0.3, 0.2, -0.1, 2.0, 30.0}}; }
+  static offset_force from_parameters(std::span<const double> v) {
+    return offset_force({v[0], v[1], v[2], spatial_load_parameters::from(v.subspan(3))});
+  }
+  void new_integration(element_context& ctx) const {
+    for (double x : {p.cx, p.cy, p.cz})
+      if (!std::isfinite(x)) ctx.invalid_parameter("the offset of the point of application must be finite");
+    p.load.check(ctx);
+  }
+  void evaluate(const local_input<offset_force>& in, local_output<offset_force>& out, element_context& ctx) const {
+    using namespace spatial;
+    const quaternion q = in.u.segment<4>(3);
+    const double s = q.squaredNorm();
+    if (!(s > lq_near_zero * lq_near_zero)) ctx.singular("Lq near zero: the quaternion norm |q| has vanished");
+    const vec3 f = p.load.at(in.t);
+    const vec3 rho = rotation_matrix(q) * vec3(p.cx, p.cy, p.cz);
+    const vec3 n = rho.cross(f);
+    out.f.setZero();
+    out.f.head<3>() = -f;
+    out.f.segment<3>(3) = -n;
+    for (int k = 0; k < 3; ++k) {
+      ctx.work[static_cast<std::size_t>(k)] = f(k);
+      ctx.work[static_cast<std::size_t>(k + 3)] = n(k);
+    }
+    p.load.recommend(ctx);
+    if (!out.want_jacobian) return;
+    out.K.setZero();
+    out.K.block<3, 4>(3, 3) = -(skew(f) * skew(rho)) * ((2.0 / s) * e_matrix(q));
+  }
+  /// States the checks may use: the quaternion norm is not near zero.
+  bool admissible(const local_input<offset_force>& in) const { return in.u.segment<4>(3).norm() > 0.2; }
 };
 
 template <class = void>
