@@ -148,23 +148,23 @@ TEST_SUITE("lang/spatial nodes") {
   TEST_CASE("examples/models/compound_pendulum.prd: F3A swings a body pivoted at its node with the exact period") {
     // m = 2 kg, l = 0.5 m, I = Jxx + m l^2 = 0.55 kg m^2 about the pivot, released at rest at 90 degrees:
     // T = 4 sqrt(I / (m g l)) K(sin 45 deg) = 1.7560385869 s (the simple pendulum of length I / (m l):
-    // Landau & Lifshitz, Mechanics, section 11, problem 1). Outputs every T/8: at T/4 and 3T/4 the bottom,
+    // Landau & Lifshitz, Mechanics, section 11, problem 1). Outputs every T/16: at T/4 and 3T/4 the bottom,
     // |w_x| = sqrt(2 m g l / I) (energy), at T/2 and T the turning points, w = 0; the weight's moment
     // about the pivot is m g l sin(theta): +9.81 N m at -90 degrees (T/2), -9.81 N m at +90 degrees.
     lang::session s(lang::parse_file((lang_test::models_dir() / "compound_pendulum.prd").string()));
     s.run({.write_files = false});
     const auto& r = s.results();
-    REQUIRE(r.rows() == 9);
+    REQUIRE(r.rows() == 17);
     const double peak = std::sqrt(2 * 2.0 * 9.81 * 0.5 / 0.55), mgl = 2.0 * 9.81 * 0.5;
-    MESSAGE("compound pendulum: w_x at T/4, T/2, 3T/4, T: ", r.at(2, 1), ", ", r.at(4, 1), ", ", r.at(6, 1), ", ",
-            r.at(8, 1), " rad/s (peak ", peak, ")");
-    CHECK(r.at(2, 1) == doctest::Approx(-peak).epsilon(1e-6));
-    CHECK(r.at(6, 1) == doctest::Approx(peak).epsilon(1e-6));
+    MESSAGE("compound pendulum: w_x at T/4, T/2, 3T/4, T: ", r.at(4, 1), ", ", r.at(8, 1), ", ", r.at(12, 1), ", ",
+            r.at(16, 1), " rad/s (peak ", peak, ")");
+    CHECK(r.at(4, 1) == doctest::Approx(-peak).epsilon(1e-6));
+    CHECK(r.at(12, 1) == doctest::Approx(peak).epsilon(1e-6));
     // At h = 1e-3 the trapezoidal period error, (w h)^2 / 12 = 1.5e-6 of T, leaves about 2e-5 rad/s at the
     // turning points (the same scene in C++: tests/spatial/test_spatial_elements.cpp).
-    CHECK(std::abs(r.at(4, 1)) < 2e-4);
-    CHECK(std::abs(r.at(8, 1)) < 4e-4);
+    CHECK(std::abs(r.at(8, 1)) < 2e-4);
+    CHECK(std::abs(r.at(16, 1)) < 4e-4);
     CHECK(r.at(0, 2) == doctest::Approx(-mgl).epsilon(1e-12));
-    CHECK(r.at(4, 2) == doctest::Approx(mgl).epsilon(1e-6));
+    CHECK(r.at(8, 2) == doctest::Approx(mgl).epsilon(1e-6));
   }
 }
