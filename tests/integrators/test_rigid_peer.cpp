@@ -54,23 +54,43 @@ double largest_relative_residual(assembler<M>& as, const std::vector<dof>& rows,
   return worst;
 }
 
+/// A model's state after one tiny Newmark step (NEWINT of every element; the ground and
+/// every DOF a test does not set stay as the run left them) and its assembler, built with
+/// the ground (DOF 0) prescribed: the residual of any motion a test writes into `state`.
+template <class Model>
+struct residual_probe {
+  global_state state;
+  assembler<Model> as;
+  residual_probe(Model& m, double step) {
+    simulation sim(m, newmark{});
+    sim.run({.end = step, .smax = step});
+    state = sim.state();
+    std::vector<char> prescribed(static_cast<std::size_t>(m.dof_count()), 0);
+    prescribed[0] = 1;
+    as.build(m, prescribed);
+  }
+  void evaluate(Model& m) { as.evaluate(m, state, {1.0, 0.0, 0.0}, call_info{1.0, 1e-3, 1, 0, true, nullptr}); }
+};
+
+/// A random quaternion of norm 0.95..1.05: pradis's equations hold for any |q| near 1, the peer keeps |q|.
+quaternion random_quaternion(std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), scale(0.95, 1.05);
+  quaternion q(unit(rng), unit(rng), unit(rng), unit(rng));
+  q *= scale(rng) / q.norm();
+  return q;
+}
+
 }  // namespace
 
 TEST_CASE("bench 3D peer equations: the free body's right-hand side zeroes pradis's assembled residual") {
   wp::rigid::freebody_model b;
-  simulation sim(b.m, newmark{});
-  sim.run({.end = 1e-4, .smax = 1e-4});  // NEWINT of every element
-  std::vector<char> prescribed(static_cast<std::size_t>(b.m.dof_count()), 0);
-  prescribed[0] = 1;  // the ground
-  assembler<wp::rigid::freebody_model::model_type> as;
-  as.build(b.m, prescribed);
+  residual_probe p(b.m, 1e-4);
+  global_state& s = p.state;
   std::mt19937 rng(20261122);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0), scale(0.95, 1.05);
-  global_state s = sim.state();  // the ground and every DOF not set below as the run left them
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   double worst = 0;
   for (int trial = 0; trial < 20; ++trial) {
-    quaternion q(unit(rng), unit(rng), unit(rng), unit(rng));
-    q *= scale(rng) / q.norm();  // pradis's equations hold for any |q| (near 1); the peer keeps |q|
+    const quaternion q = random_quaternion(rng);
     double y[7] = {q(0), q(1), q(2), q(3), 3 * unit(rng), 3 * unit(rng), 3 * unit(rng)}, dy[7];
     wp::rigid::freebody_rhs(y, dy);
     // dq/dt of the peer is the kinematic relation itself (checked here once more).
@@ -82,10 +102,10 @@ TEST_CASE("bench 3D peer equations: the free body's right-hand side zeroes pradi
     for (int i = 0; i < 3; ++i) CHECK(wb(i) == doctest::Approx(w(i)).epsilon(1e-13));
     for (const dof& d : b.x) s.u(d.index) = s.v(d.index) = s.a(d.index) = 0;
     set_rotation(s, b.r, q, w, wd);
-    as.evaluate(b.m, s, {1.0, 0.0, 0.0}, call_info{1.0, 1e-3, 1, 0, true, nullptr});
+    p.evaluate(b.m);
     // One element per row: the scale is that of its inertial moment, I (|omega'| + |omega|^2).
     const double scale = wp::rigid::hlw_inertia.maxCoeff() * (wd.cwiseAbs().maxCoeff() + w.squaredNorm());
-    worst = std::max(worst, largest_relative_residual(as, {b.x[0], b.x[1], b.x[2], b.r.q1, b.r.q2, b.r.q3}, scale));
+    worst = std::max(worst, largest_relative_residual(p.as, {b.x[0], b.x[1], b.x[2], b.r.q1, b.r.q2, b.r.q3}, scale));
   }
   MESSAGE("free body: largest assembled residual / its scale on the peer's motion: ", worst);
   CHECK(worst < 1e-13);
@@ -94,19 +114,13 @@ TEST_CASE("bench 3D peer equations: the free body's right-hand side zeroes pradi
 TEST_CASE("bench 3D peer equations: the heavy top's right-hand side zeroes pradis's assembled residual") {
   pradis_examples::spinning_top t;
   const wp::rigid::top_data d = wp::rigid::top_data::from_example();
-  simulation sim(t.m, newmark{});
-  sim.run({.end = 1e-5, .smax = 1e-5});
-  std::vector<char> prescribed(static_cast<std::size_t>(t.m.dof_count()), 0);
-  prescribed[0] = 1;
-  assembler<pradis_examples::spinning_top::model_type> as;
-  as.build(t.m, prescribed);
+  residual_probe p(t.m, 1e-5);
+  global_state& s = p.state;
   std::mt19937 rng(20261123);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0), scale(0.95, 1.05);
-  global_state s = sim.state();
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   double worst = 0;
   for (int trial = 0; trial < 20; ++trial) {
-    quaternion q(unit(rng), unit(rng), unit(rng), unit(rng));
-    q *= scale(rng) / q.norm();
+    const quaternion q = random_quaternion(rng);
     double y[13], dy[13];
     for (int i = 0; i < 3; ++i) y[i] = 1e-3 * unit(rng), y[3 + i] = 0.1 * unit(rng), y[10 + i] = 30 * unit(rng);
     for (int i = 0; i < 4; ++i) y[6 + i] = q(i);
@@ -119,8 +133,8 @@ TEST_CASE("bench 3D peer equations: the heavy top's right-hand side zeroes pradi
       CHECK(dy[i] == y[3 + i]);
     }
     set_rotation(s, t.r, q, vec3(y[10], y[11], y[12]), vec3(dy[10], dy[11], dy[12]));
-    as.evaluate(t.m, s, {1.0, 0.0, 0.0}, call_info{1.0, 1e-3, 1, 0, true, nullptr});
-    worst = std::max(worst, largest_relative_residual(as, {t.x[0], t.x[1], t.x[2], t.r.q1, t.r.q2, t.r.q3}));
+    p.evaluate(t.m);
+    worst = std::max(worst, largest_relative_residual(p.as, {t.x[0], t.x[1], t.x[2], t.r.q1, t.r.q2, t.r.q3}));
   }
   MESSAGE("top: largest assembled residual / its scale on the peer's motion: ", worst);
   CHECK(worst < 1e-12);
@@ -170,28 +184,21 @@ TEST_CASE("bench 3D peer equations: the exact-joint top's right-hand side zeroes
   pradis_examples::spinning_top t(p);
   REQUIRE(t.m.dof_count() == 1 + 4);  // the ground and the rotational node: no translation, no multiplier
   const wp::rigid::top_data d = wp::rigid::top_data::from_example();
-  simulation sim(t.m, newmark{});
-  sim.run({.end = 1e-5, .smax = 1e-5});
-  std::vector<char> prescribed(static_cast<std::size_t>(t.m.dof_count()), 0);
-  prescribed[0] = 1;
-  assembler<pradis_examples::spinning_top::model_type> as;
-  as.build(t.m, prescribed);
+  residual_probe probe(t.m, 1e-5);
   std::mt19937 rng(20261128);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0), scale(0.95, 1.05);
-  global_state s = sim.state();
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   double worst = 0;
   for (int trial = 0; trial < 20; ++trial) {
-    quaternion q(unit(rng), unit(rng), unit(rng), unit(rng));
-    q *= scale(rng) / q.norm();
+    const quaternion q = random_quaternion(rng);
     double y[7] = {q(0), q(1), q(2), q(3), 30 * unit(rng), 30 * unit(rng), 30 * unit(rng)}, dy[7];
     wp::rigid::top_exact_rhs(d, y, dy);
-    set_rotation(s, t.r, q, vec3(y[4], y[5], y[6]), vec3(dy[4], dy[5], dy[6]));
-    as.evaluate(t.m, s, {1.0, 0.0, 0.0}, call_info{1.0, 1e-3, 1, 0, true, nullptr});
+    set_rotation(probe.state, t.r, q, vec3(y[4], y[5], y[6]), vec3(dy[4], dy[5], dy[6]));
+    probe.evaluate(t.m);
     // The moment about the vertical is zero in both (dL_Z/dt = 0, the weight is horizontal): each row
     // is measured against the scale of the inertial moment, I_O (|omega'| + |omega|^2).
     const vec3 wd(dy[4], dy[5], dy[6]), w(y[4], y[5], y[6]);
     const double scale = std::max(d.j1 + d.m * d.l * d.l, d.j3) * (wd.cwiseAbs().maxCoeff() + w.squaredNorm());
-    worst = std::max(worst, largest_relative_residual(as, {t.r.q1, t.r.q2, t.r.q3}, scale));
+    worst = std::max(worst, largest_relative_residual(probe.as, {t.r.q1, t.r.q2, t.r.q3}, scale));
   }
   MESSAGE("top with its node at the tip: largest assembled residual / its scale on the peer's motion: ", worst);
   CHECK(worst < 1e-12);
