@@ -18,13 +18,22 @@ awk -F, -v dir="$tmp" 'NR > 1 && $5 > 0 && $5 < 1e300 && $6 > 0 {
   f = dir "/" $1 "__" series ".dat"
   print $6, $5 > f
 }' "$csv"
+palette=('#1f77b4' '#ff7f0e' '#2ca02c' '#d62728' '#9467bd' '#e377c2' '#7f7f7f' '#bcbd22' '#17becf'
+  '#000000' '#aec7e8' '#ffbb78' '#98df8a' '#ff9896' '#c5b0d5' '#f7b6d2' '#c49c94' '#dbdb8d' '#9edae5' '#393b79')
 for problem in $(awk -F, 'NR > 1 { print $1 }' "$csv" | sort -u); do
   plots=()
+  n=0
   for f in "$tmp/$problem"__*.dat; do
     [ -e "$f" ] || continue
     # points stay in sweep order (loosest setting first), so a line follows its sweep
     label="$(basename "$f" .dat)"; label="${label#${problem}__}"; label="${label//_/ }"
-    case "$label" in "pradis BDF") style="lw 3 lc rgb '#8c564b'";; pradis*) style="lw 2";; *) style="lw 1 dt 2";; esac
+    # one colour per series of a plot (gnuplot's own cycle has 8, topx has 17 series)
+    colour="${palette[$((n % ${#palette[@]}))]}"; n=$((n + 1))
+    case "$label" in
+      "pradis BDF") style="lw 3 lc rgb '#8c564b'";;
+      pradis*) style="lw 2 lc rgb '$colour'";;
+      *) style="lw 1 dt 2 lc rgb '$colour'";;
+    esac
     plots+=("'$f' using 1:2 with linespoints $style pt 7 ps 0.6 title '$label'")
   done
   [ ${#plots[@]} -gt 0 ] || continue
