@@ -24,7 +24,10 @@
 //    lowest point at T/4;
 //  * a pendulum hung from a point driven at constant velocity: by Galilean invariance
 //    it moves relative to the hinge as the fixed one; the driver keeps the plain form
-//    there (a note in its log).
+//    there (a note in its log);
+//  * LINKX's direction state is a guard (GuardStateElement): the driver commits it from
+//    the last Newton evaluation of a step, with the same run as when a state of another
+//    kind makes it evaluate the converged state.
 
 #include <doctest/doctest.h>
 
@@ -38,6 +41,7 @@
 #include <vector>
 
 #include "dense_test_solver.hpp"
+#include "integrator_test_support.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/bdf/bdf_simulation.hpp"
 
@@ -279,5 +283,55 @@ TEST_SUITE("integrators/bdf index 3") {
       CHECK(worst_gap < 10 * tol);
       CHECK(worst_energy < 20 * tol * 0.5 * bdf3_g);
     }
+  }
+
+  TEST_CASE("LINKX's guard state needs no evaluation at the converged state: the same run with one fewer "
+            "evaluation per step") {
+    // Invariant: LINKX's flows do not read its state (the all-elements test checks the claim),
+    // so committing it from the last Newton evaluation of a step, instead of from one more
+    // evaluation at the converged state, must leave the run unchanged. The second model adds
+    // a state-carrying element without flows (VINT, not a guard), which makes the driver
+    // evaluate the converged state after every accepted step.
+    using vint_model = model<point_mass, planar_rigid_link, constant_force, pradis_test::velocity_integrator>;
+    struct chain {
+      vint_model m;
+      std::vector<dof> d;
+      element_ref<planar_rigid_link> first;
+      chain(bool vint) {
+        const double l = 1.0 / 3, mass = 0.5 / 3;
+        for (int i = 0; i < 3; ++i) {
+          const std::string k = std::to_string(i + 1);
+          const dof x = m.add_dof("x" + k), y = m.add_dof("y" + k);
+          m.add<point_mass>("mx" + k, {mass}, x);
+          m.add<point_mass>("my" + k, {mass}, y);
+          m.add<constant_force>("w" + k, {-mass * bdf3_g}, y);
+          const dof ax = i == 0 ? m.ground() : d[d.size() - 2], ay = i == 0 ? m.ground() : d.back();
+          const auto r = m.add<planar_rigid_link>("link" + k, {i * l, 0.0, (i + 1) * l, 0.0}, ax, ay, x, y);
+          if (i == 0) first = r;
+          d.push_back(x);
+          d.push_back(y);
+        }
+        if (vint) m.add<pradis_test::velocity_integrator>("vint", {}, d[0]);
+      }
+    };
+    chain a(false), b(true);
+    bdf_simulation sa(a.m), sb(b.m);
+    run_statistics ra, rb;
+    REQUIRE_NOTHROW(ra = sa.run(bdf3_options(0.5, 1e-7)));
+    REQUIRE_NOTHROW(rb = sb.run(bdf3_options(0.5, 1e-7)));
+    CHECK(ra.steps == rb.steps);
+    CHECK(ra.newton_iterations == rb.newton_iterations);
+    CHECK(ra.factorizations == rb.factorizations);
+    CHECK(rb.evaluations - ra.evaluations == rb.steps);
+    for (std::size_t i = 0; i < a.d.size(); ++i) {
+      CHECK(sa.u(a.d[i]) == sb.u(b.d[i]));
+      CHECK(sa.v(a.d[i]) == sb.v(b.d[i]));
+    }
+    // The committed direction of the first link (from the origin to mass 1) is that of the
+    // final state to within the Newton tolerance.
+    const double qx = 1.0 / 3 + sa.u(a.d[0]), qy = sa.u(a.d[1]), len = std::hypot(qx, qy);
+    const double* old = a.m.old_state_pool().data() + a.m.instance(a.first).state_offset;
+    MESSAGE("committed direction off by " << std::hypot(old[0] - qx / len, old[1] - qy / len));
+    CHECK(std::hypot(old[0] - qx / len, old[1] - qy / len) < 1e-6);
   }
 }

@@ -2,7 +2,8 @@
 // list pradis::elements::library_elements, so a new element is covered
 // automatically) passes the finite-difference Jacobian check at many random
 // states, has help text whose line counts match its passport, and rejects bad
-// flat parameter counts. Reference: PRADIS element developer's manual, 3.6.8.
+// flat parameter counts; the claims of inert and guard-state elements hold at every
+// state. Reference: PRADIS element developer's manual, 3.6.8.
 
 #include <doctest/doctest.h>
 
@@ -66,6 +67,15 @@ void check_one_element() {
       if constexpr (element_traits<E>::has_c) CHECK(out.C.isZero(0.0));
       if constexpr (element_traits<E>::has_m) CHECK(out.M.isZero(0.0));
       CHECK(ctx.recommended_step == std::numeric_limits<double>::infinity());
+    }
+    if constexpr (GuardStateElement<E>) {  // OLD must not enter the flows; NEW depends on the state alone
+      std::fill(chk.old_state().begin(), chk.old_state().end(), 0.0);
+      const auto f0 = chk.flows(in);
+      const std::vector<double> new0(chk.new_state().begin(), chk.new_state().end());
+      std::copy(new0.begin(), new0.end(), chk.old_state().begin());  // OLD as the step would leave it
+      CHECK(chk.flows(in) == f0);
+      CHECK(std::equal(new0.begin(), new0.end(), chk.new_state().begin(), chk.new_state().end()));
+      std::fill(chk.old_state().begin(), chk.old_state().end(), 0.0);
     }
     auto r = chk.check(in);
     ++checked;

@@ -93,6 +93,18 @@ concept InertElement = requires {
   { E::inert } -> std::convertible_to<bool>;
 } && E::inert;
 
+/// Whether E's state vector is a guard only: `static constexpr bool state_is_guard = true`
+/// states that OLD enters neither the flows nor the Jacobian (it may only stop a step, as a
+/// singular situation), and that NEW is a function of the current potentials alone (e.g.
+/// LINKX's direction, which detects a passage through zero length). NEW may then come from
+/// the last Newton evaluation of an accepted step, within the Newton tolerance of the
+/// converged state: the BDF driver skips its evaluation at the converged state when every
+/// instance with a state vector is of such a type. The all-elements test checks the claim.
+template <class E>
+concept GuardStateElement = requires {
+  { E::state_is_guard } -> std::convertible_to<bool>;
+} && E::state_is_guard;
+
 /// Whether E says if its flows turn with its rotational nodes: an optional
 /// member `bool body_fixed_flows() const`. True states that on every rotational
 /// slot the element's moments are R(q) times a function of the body angular

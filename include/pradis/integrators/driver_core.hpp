@@ -55,6 +55,15 @@ class driver_core {
     ctx.nstep = stats_.steps;
     return ctx;
   }
+  /// Whether committing the element states of an accepted step needs an evaluation at the
+  /// converged state: some instance has a state vector and its type is not a GuardStateElement.
+  bool states_need_converged_evaluation() {
+    bool need = false;
+    for_each_instance([&](auto& in) {
+      if constexpr (!GuardStateElement<std::remove_cvref_t<decltype(in.element)>>) need = need || in.state_size > 0;
+    });
+    return need;
+  }
   /// NEWINT work of every element (parameter checks, work vectors).
   void new_integration() {
     for_each_instance([&](auto& in) {

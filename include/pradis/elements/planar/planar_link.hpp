@@ -42,6 +42,8 @@ struct planar_link_t {
                  "step (it passed through zero length); treated as a failed step, reported if it persists at SMIN. "
                  "The state vector (STR = 2) holds the direction of the last accepted step"};
 
+  /// The state (the direction at the last accepted step) only guards the next step.
+  static constexpr bool state_is_guard = true;
   /// Typed parameters, in PAR order.
   struct parameters {
     double xa0 = 0, ya0 = 0, xb0 = 1, yb0 = 0;  ///< initial coordinates of A and B [m]

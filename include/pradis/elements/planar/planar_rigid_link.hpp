@@ -64,6 +64,8 @@ struct planar_rigid_link_t {
                  "mass or other constraints so that the saddle-point matrix is regular. Use HHT or "
                  "generalized-alpha (numerical damping) for long runs: under NEWMARK the axial force may ring. "
                  "The state vector (STR = 2) holds the direction of the last accepted step"};
+  /// The state (the direction at the last accepted step) only guards the next step.
+  static constexpr bool state_is_guard = true;
   /// The internal DOF (the axial force) belongs to the mechanical domain.
   static constexpr std::array<domain, 5> domains{domain::mechanical, domain::mechanical, domain::mechanical,
                                                  domain::mechanical, domain::mechanical};

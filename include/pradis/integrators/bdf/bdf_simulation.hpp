@@ -330,6 +330,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       yp(i) = s_.v(d);
       yp(ne + i) = s_.a(d);
     }
+    converged_state_evaluation_ = this->states_need_converged_evaluation();
     rates_.build(m_.rotation_nodes(), asm_, bopt_.rotation_rates);
     turned_.build(m_, asm_, bopt_.rotated_jacobian, bopt_.body_frame);
     rates_.rates(s_, ne, y, &yp);
@@ -429,9 +430,9 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       }
     }
     nef_ = ncf_ = 0;
-    // Element states are committed at the converged state (the last Newton
-    // evaluation was at the iterate before the last correction).
-    if (!m_.new_state_pool().empty()) evaluate({0, 0, 0}, h, false, 0, true);
+    // Element states are committed at the converged state (the last Newton evaluation was at
+    // the iterate before the last correction), unless all are guards (GuardStateElement).
+    if (converged_state_evaluation_) evaluate({0, 0, 0}, h, false, 0, true);
     hist_.complete(e_, w_, bopt_.max_order, bopt_.fixed_order, opt_.error_control, opt_.smax);
     if (bdf_detail::renormalise_rotation_nodes(m_.rotation_nodes(), asm_, s_, hist_, bopt_.lq_renormalise, rates_) > 0)
       jac_valid_ = false;  // dF/dq scales with the node
@@ -487,6 +488,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   std::vector<char> constraint_types_;     // per element type: owns an index-3 multiplier (bdf_detail::constraint_types)
   int nef_ = 0, ncf_ = 0;
   bool jac_valid_ = false;
+  bool converged_state_evaluation_ = true;  // evaluate after an accepted step to commit the states
 };
 
 /// Deduction guides: `bdf_simulation sim(model)`, `bdf_simulation sim(model, bdf_options{...})`.
