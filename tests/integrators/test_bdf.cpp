@@ -586,6 +586,8 @@ TEST_SUITE("integrators/bdf") {
             "the Jacobian coefficient change inf must be a finite number >= 0");
     refused({.lq_renormalise = -1}, "the quaternion norm band lq_renormalise = -1 must be a number >= 0");
     refused({.lq_renormalise = std::numeric_limits<double>::quiet_NaN()}, "lq_renormalise = nan must be a number >= 0");
+    refused({.turn_refresh = -0.1}, "the turn angle turn_refresh = -0.1 of a Jacobian refresh must be a number >= 0");
+    refused({.turn_refresh = std::numeric_limits<double>::quiet_NaN()}, "turn_refresh = nan of a Jacobian refresh");
     bdf_simulation sim(m);
     run_options o = controlled(1.0, 1e-3, 0.1);
     o.drltx = 0;

@@ -36,8 +36,8 @@
 /// order-raise test), and fails when the rate exceeds newton_options::max_rate or after
 /// newton_options::itr iterations. The Jacobian is refreshed when c changed by
 /// more than bdf_options::coefficient_change (default: at all) since the factorisation (a kept
-/// one has its corrections scaled by 2 / (1 + c / c_J)), at the start of every
-/// stage and before a failed step is redone. PRADIS's DABSU/DRLTU/DABSI/DRLTI
+/// one has its corrections scaled by 2 / (1 + c / c_J)), when a node turned by bdf_options::turn_refresh,
+/// at the start of every stage and before a failed step is redone. PRADIS's DABSU/DRLTU/DABSI/DRLTI
 /// are not used, nor is newton_options::method (always modified Newton).
 
 #include <Eigen/Core>
@@ -371,7 +371,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     const bool ok = bdf_detail::correct(
         asm_, solver_, s_, y_p_, yp_p_, c, hist_.c_last(), w_, opt_.newton,
         raise_test ? bopt_.raise_test_tolerance : bopt_.newton_tolerance,
-        bopt_.coefficient_change, mem, rhs_, dy_, stats_, last_failure_, stab_.rows.empty() ? nullptr : &stab_,
+        bopt_.coefficient_change, bopt_.turn_refresh, mem, rhs_, dy_, stats_, last_failure_, stab_.rows.empty() ? nullptr : &stab_,
         rates_.empty() ? nullptr : &rates_, turned_.empty() ? nullptr : &turned_,
         [&](const jacobian_coefficients& jc, bool jac, bool rows, int k) {
           evaluate(jc, h, jac, k, true, rows ? &constraint_types_ : nullptr);

@@ -17,7 +17,9 @@
 ///   corrections;
 /// - the Jacobian is evaluated and factorised when none is kept, or when c left
 ///   [c_J (1 - x) / (1 + x), c_J (1 + x) / (1 - x)], x = the window argument
-///   (bdf_options::coefficient_change);
+///   (bdf_options::coefficient_change), or when a rotational node turned in
+///   the global frame has turned by more than turn_refresh since the
+///   factorisation (bdf_options::turn_refresh; the rate estimate is then kept);
 ///   a kept one has its corrections scaled by 2 / (1 + c / c_J) (IDA); a step
 ///   that failed with a kept Jacobian is retried at once with a fresh one;
 /// - with index-3 constraints in the stabilised index-2 form
@@ -148,7 +150,8 @@ void solve_corrections(const Solver& solver, std::vector<double>& b1, std::vecto
 template <class Assembler, class Solver, class Evaluate>
 bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::VectorXd& y_p, const Eigen::VectorXd& yp_p,
              double c, double c_last, const Eigen::VectorXd& w, const newton_options& nw, double eps,
-             double window, newton_memory& mem, std::vector<double>& rhs, Eigen::VectorXd& dy, run_statistics& stats,
+             double window, double turn_refresh, newton_memory& mem, std::vector<double>& rhs, Eigen::VectorXd& dy,
+             run_statistics& stats,
              std::optional<error>& failure, index2_stabilisation* st, const rate_form* rf, rotated_jacobian* rj,
              Evaluate&& evaluate) {
   const int ne = as.equations();
@@ -159,6 +162,10 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
     refresh = !(r >= lo && r <= 1 / lo);
   }
   if (c != c_last) mem.ss = 100;
+  // A refresh because a node turned in the global frame keeps the rate estimate:
+  // the fresher matrix converges no slower than the one it replaces.
+  bool keep_rate = false;
+  if (!refresh && rj && rj->turned_beyond(s, turn_refresh)) refresh = keep_rate = true;
   dy.resize(2 * ne);
   failure.reset();
   for (;;) {
@@ -180,7 +187,8 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
           mem.valid = true;
           if (rj) rj->set_reference(s);
           mem.c_jac = c;
-          mem.ss = 20;
+          if (!keep_rate) mem.ss = 20;
+          keep_rate = false;
           refresh = false;
         }
         for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));

@@ -88,6 +88,16 @@ struct bdf_options {
   /// columns, which fits the inertia of any tumbling body; the others in the
   /// global frame (docs/bdf.md, "Newton"). false: every node in the global frame.
   bool body_frame = true;
+  /// With rotated_jacobian: the kept Newton matrix is evaluated and factorised
+  /// again when a node turned in the global frame (not in its body frame) has
+  /// turned by more than this angle [rad] since the factorisation. The turn in
+  /// the global frame is exact only for what depends on the global angular
+  /// velocity alone; the rest, such as the inertia of a body held by a joint,
+  /// ages as the body turns, and the first Newton corrections that the rate
+  /// test accepts then leave a small error of one sign that adds up over the
+  /// steps (docs/bdf.md, "Newton"). Newton's rate estimate is kept across such
+  /// a refresh. A number >= 0; at or above pi never (the angle is at most pi).
+  double turn_refresh = 1.0;
 
   /// Equal options (the language keeps a BDF driver across stages whose options are equal).
   bool operator==(const bdf_options&) const = default;
@@ -108,6 +118,8 @@ inline std::optional<std::string> check_bdf_options(const bdf_options& o) {
     return "the initial step " + num(o.initial_step) + " must be a finite number >= 0";
   if (!(o.coefficient_change >= 0) || o.coefficient_change == std::numeric_limits<double>::infinity())
     return "the Jacobian coefficient change " + num(o.coefficient_change) + " must be a finite number >= 0";
+  if (!(o.turn_refresh >= 0))
+    return "the turn angle turn_refresh = " + num(o.turn_refresh) + " of a Jacobian refresh must be a number >= 0";
   if (!(o.lq_renormalise >= 0))
     return "the quaternion norm band lq_renormalise = " + num(o.lq_renormalise) + " must be a number >= 0";
   return std::nullopt;

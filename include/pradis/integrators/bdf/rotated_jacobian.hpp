@@ -36,6 +36,8 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <span>
 #include <vector>
 
@@ -78,6 +80,20 @@ class rotated_jacobian {
       e.a0 = e.body ? spatial::g_matrix(e.q0) : spatial::e_matrix(e.q0);
       e.inv_s0 = 1 / e.q0.squaredNorm();
     }
+  }
+  /// Whether a node turned in the global frame has turned by more than `angle`
+  /// [rad] since the reference (bdf_options::turn_refresh); never for angle >= pi.
+  /// The angle between q0 and q is 2 acos(|q0.q| / (|q0| |q|)).
+  bool turned_beyond(const global_state& s, double angle) const {
+    if (!(angle < std::numbers::pi)) return false;
+    const double c = std::cos(angle / 2);
+    for (const entry& e : nodes_) {
+      if (e.body) continue;
+      const spatial::quaternion q = get(s.u, e);
+      const double d = std::abs(q.dot(e.q0));
+      if (d < c * std::sqrt(q.squaredNorm() / e.inv_s0)) return true;
+    }
+    return false;
   }
   /// R(q0) R(q)^T on the moment rows of a right-hand side of the nodes turned
   /// in their body frame (before the solve with J0).
