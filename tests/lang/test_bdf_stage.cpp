@@ -4,7 +4,7 @@
 // schemes following each other from the state the previous stage reached; a
 // $SAVE / $RESTORE between two BDF stages reproducing the uninterrupted run
 // bit for bit (both drivers write the same checkpoint format and BDF starts
-// every stage at order 1); OPTIM, CONTROL, LQBAND, INDEX2, TURN and RATES on a BDF stage; the keys
+// every stage at order 1); OPTIM, CONTROL, LQBAND, INDEX2, TURN, TURNMAX and RATES on a BDF stage; the keys
 // BDF refuses and bad values.
 
 #include <cmath>
@@ -119,7 +119,8 @@ TEST_SUITE("lang/bdf") {
     CHECK(held->stages()[0].program == "BDF");
   }
 
-  TEST_CASE("LQBAND, INDEX2, TURN and RATES set the BDF driver's options; a stage with other options gets its own "
+  TEST_CASE("LQBAND, INDEX2, TURN, TURNMAX and RATES set the BDF driver's options; a stage with other options gets "
+            "its own "
             "driver") {
     auto s = lang_test::run(oscillator("    A 'BDF (END=0.5, OUT=0.1, SMAX=0.1, DRLTX=1E-9, LQBAND=0.05, INDEX2=0, "
                                        "TURN=0, RATES=1)\n"
@@ -130,6 +131,7 @@ TEST_SUITE("lang/bdf") {
     auto a = lang_test::run(oscillator("    A 'BDF (END=0.5, OUT=0.1, SMAX=0.1, DRLTX=1E-9, LQBAND=0.05, INDEX2=0, "
                                        "TURN=0, RATES=1)\n"));
     CHECK(a->bdf_ptr()->options().lq_renormalise == 0.05);
+    CHECK(a->bdf_ptr()->options().turn_refresh == bdf_options{}.turn_refresh);
     CHECK_FALSE(a->bdf_ptr()->options().stabilised_index2);
     CHECK_FALSE(a->bdf_ptr()->options().rotated_jacobian);
     CHECK(a->bdf_ptr()->options().rotation_rates);
@@ -140,12 +142,15 @@ TEST_SUITE("lang/bdf") {
     CHECK_FALSE(turn1->bdf_ptr()->options().body_frame);
     auto turn2 = lang_test::run(oscillator("    A 'BDF (END=0.5, OUT=0.1, SMAX=0.1, DRLTX=1E-9, TURN=2)\n"));
     CHECK(turn2->bdf_ptr()->options() == bdf_options{});
+    auto turnmax = lang_test::run(oscillator("    A 'BDF (END=0.5, OUT=0.1, SMAX=0.1, DRLTX=1E-9, TURNMAX=0.25)\n"));
+    CHECK(turnmax->bdf_ptr()->options().turn_refresh == 0.25);
+    CHECK(turnmax->bdf_ptr()->options().rotated_jacobian);
     // The oscillator has no rotational node and no exact joint: the keys change nothing
     // of its motion (exact solution as in the first test).
     CHECK(max_error(*s) < 1e-6);
   }
 
-  TEST_CASE("keys BDF refuses, MAXORD, LQBAND, INDEX2, TURN and RATES out of range, are located errors") {
+  TEST_CASE("keys BDF refuses, MAXORD, LQBAND, INDEX2, TURN, TURNMAX and RATES out of range, are located errors") {
     std::string e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, BETA=0.3)\n"));
     CHECK(e.find("test.prd:13:") != std::string::npos);
     CHECK(e.find("key BETA belongs to NEWMARK, not to BDF") != std::string::npos);
@@ -172,6 +177,11 @@ TEST_SUITE("lang/bdf") {
     e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, TURN=3)\n"));
     CHECK(e.find("test.prd:13:") != std::string::npos);
     CHECK(e.find("TURN must be a whole number from 0 to 2") != std::string::npos);
+    e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, TURNMAX=-0.1)\n"));
+    CHECK(e.find("test.prd:13:") != std::string::npos);
+    CHECK(e.find("TURNMAX = -0.1 must be a number >= 0") != std::string::npos);
+    e = lang_test::error_of(oscillator("    Calc 'NEWMARK (END=1, TURNMAX=1)\n"));
+    CHECK(e.find("key TURNMAX belongs to BDF, not to NEWMARK") != std::string::npos);
     e = lang_test::error_of(oscillator("    Calc 'BDF (END=1, RATES=-1)\n"));
     CHECK(e.find("test.prd:13:") != std::string::npos);
     CHECK(e.find("RATES must be a whole number from 0 to 1") != std::string::npos);

@@ -75,7 +75,7 @@ class action_checker : public model_builder {
     location out_loc;         ///< where OUT is
     int optim = -1;           ///< OPTIM: ordering level 0..4, or -1 to choose by size
     bool bdf = false;         ///< the BDF program (bdf_opt), not a one-step scheme
-    bdf_options bdf_opt;      ///< BDF: MAXORD, LQBAND, INDEX2, TURN, RATES
+    bdf_options bdf_opt;      ///< BDF: MAXORD, LQBAND, INDEX2, TURN, TURNMAX, RATES
   };
 
   /// The program that owns a scheme key (BETA, GAMMA, ALPHA, RHOINF), or "" for a common key.
@@ -83,7 +83,9 @@ class action_checker : public model_builder {
     if (k == "BETA" || k == "GAMMA") return "NEWMARK";
     if (k == "ALPHA") return "HHT";
     if (k == "RHOINF") return "GALPHA";
-    if (k == "MAXORD" || k == "LQBAND" || k == "INDEX2" || k == "TURN" || k == "RATES") return "BDF";
+    if (k == "MAXORD" || k == "LQBAND" || k == "INDEX2" || k == "TURN" || k == "TURNMAX" ||
+        k == "RATES")
+      return "BDF";
     return "";
   }
 
@@ -104,7 +106,7 @@ class action_checker : public model_builder {
                                                 "DRLTU", "DABSI", "DRLTI", "ITR",     "SECOND",  "BETA",
                                                 "GAMMA", "ALPHA", "RHOINF", "DABSX",  "DRLTX",   "CONTROL",
                                                 "PREDICT", "SAVE",  "OPTIM",   "MAXORD", "LQBAND",  "INDEX2",
-                                                "TURN",  "RATES"};
+                                                "TURN",  "TURNMAX", "RATES"};
     for (const auto& g : c.args)
       for (const auto& it : g) {
         if (it.what != ast::item::kind::keyed)
@@ -128,7 +130,7 @@ class action_checker : public model_builder {
             if (k == no)
               fail(it.loc, "key " + k + " does not apply to BDF (its Newton and error tests are weighted by DRLTX and "
                            "DABSX; keys of BDF: END OUT SMAX SMIN IGNORE DRLTX DABSX CONTROL ITR SAVE OPTIM MAXORD "
-                           "LQBAND INDEX2 TURN RATES)");
+                           "LQBAND INDEX2 TURN TURNMAX RATES)");
         const std::string owner = owner_of_key(k);
         if (!owner.empty() && owner != c.program)
           fail(it.loc, "key " + k + " belongs to " + owner + ", not to " + c.program +
@@ -190,6 +192,12 @@ class action_checker : public model_builder {
           const int turn = whole(v, "TURN", 0, 2);
           s.bdf_opt.rotated_jacobian = turn > 0;
           s.bdf_opt.body_frame = turn == 2;
+        } else if (k == "TURNMAX") {
+          s.bdf_opt.turn_refresh = scalar(v, "TURNMAX");
+          if (!(s.bdf_opt.turn_refresh >= 0))
+            fail(it.loc, "TURNMAX = " + num(s.bdf_opt.turn_refresh) +
+                             " must be a number >= 0 (the turn [rad] of a rotational node in the global frame after "
+                             "which the kept Newton matrix is refreshed; >= pi: never)");
         } else if (k == "RATES") {
           s.bdf_opt.rotation_rates = whole(v, "RATES", 0, 1) == 1;
         } else if (k == "OPTIM")

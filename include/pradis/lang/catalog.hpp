@@ -43,6 +43,8 @@ inline const std::vector<program_info>& integration_programs() {
        "INDEX2 - exact joints: 1 stabilised index-2 form, 0 plain index-3 form (1)\n"
        "TURN - the kept Newton matrix turned with the rotational nodes: 2 in the body frame of nodes whose elements "
        "all turn with them (BODY3 centred, M3B), else global; 1 global frame only; 0 not turned (2)\n"
+       "TURNMAX - the kept Newton matrix is refreshed when a node turned in the global frame has turned by more "
+       "than TURNMAX [rad] since its factorisation; >= pi: never (1)\n"
        "RATES - rotational nodes: 1 body rates in the BDF history (more accurate with fixed steps), 0 q' (0)\n"
        "BDF always controls its error with DRLTX and DABSX (and CONTROL); "
        "DABSU, DRLTU, DABSI, DRLTI, SECOND and PREDICT do not apply\n"},
