@@ -51,6 +51,18 @@ run_options hlw_fixed_steps(int n, double newton) {
   o.dabsx = newton;
   return o;
 }
+
+/// The spinning top of examples/spinning_top to t = 1 s under error control at DRLTX = DABSX = tol.
+run_options top_controlled(double tol) {
+  run_options o;
+  o.end = 1.0;
+  o.smax = 0.05;
+  o.smin = 1e-12;
+  o.error_control = true;
+  o.drltx = tol;
+  o.dabsx = tol;
+  return o;
+}
 }  // namespace
 
 TEST_SUITE("integrators/bdf") {
@@ -115,14 +127,7 @@ TEST_SUITE("integrators/bdf") {
       sim.on_step([&](const auto& s) {
         r.lq_max = std::max(r.lq_max, std::abs(spatial::node_quaternion(s, t.r).norm() - 1));
       });
-      run_options o;
-      o.end = 1.0;
-      o.smax = 0.05;
-      o.smin = 1e-12;
-      o.error_control = true;
-      o.drltx = tol;
-      o.dabsx = tol;
-      sim.run(o);
+      sim.run(top_controlled(tol));
       r.w3 = (spatial::node_rotation(sim, t.r).transpose() * spatial::node_angular_velocity(sim, t.r))(2);
       return r;
     };
@@ -403,14 +408,7 @@ TEST_SUITE("integrators/bdf") {
       tp.exact_joint = true;
       pradis_examples::spinning_top t(tp);
       bdf_simulation sim(t.m, bdf_options{.raise_test_tolerance = raise, .rotated_jacobian = turned});
-      run_options o;
-      o.end = 1.0;
-      o.smax = 0.05;
-      o.smin = 1e-12;
-      o.error_control = true;
-      o.drltx = 1e-4;
-      o.dabsx = 1e-4;
-      const run_statistics st = sim.run(o);
+      const run_statistics st = sim.run(top_controlled(1e-4));
       const double w3 = (spatial::node_rotation(sim, t.r).transpose() * spatial::node_angular_velocity(sim, t.r))(2);
       return std::pair{st, std::abs(w3 - t.w3) / t.w3};
     };
@@ -468,14 +466,7 @@ TEST_SUITE("integrators/bdf") {
       if (st) *st = s;
       return wp::rigid::compare_state(spatial::node_quaternion(sim, t.r), spatial::node_body_angular_velocity(sim, t.r));
     };
-    run_options ref;
-    ref.end = 1.0;
-    ref.smax = 0.05;
-    ref.smin = 1e-12;
-    ref.error_control = true;
-    ref.drltx = 1e-11;
-    ref.dabsx = 1e-11;
-    const Eigen::VectorXd exact = compared(true, {}, ref, nullptr);
+    const Eigen::VectorXd exact = compared(true, {}, top_controlled(1e-11), nullptr);
     run_options o;
     o.end = 1.0;
     o.error_control = false;
