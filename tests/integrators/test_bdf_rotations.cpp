@@ -464,7 +464,8 @@ TEST_SUITE("integrators/bdf") {
       bdf_simulation sim(t.m, bo);
       const run_statistics s = sim.run(o);
       if (st) *st = s;
-      return wp::rigid::compare_state(spatial::node_quaternion(sim, t.r), spatial::node_body_angular_velocity(sim, t.r));
+      return wp::rigid::compare_state(spatial::node_quaternion(sim, t.r),
+                                      spatial::node_body_angular_velocity(sim, t.r));
     };
     const Eigen::VectorXd exact = compared(true, {}, top_controlled(1e-11), nullptr);
     run_options o;

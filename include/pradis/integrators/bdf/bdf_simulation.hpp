@@ -370,8 +370,8 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     const bool raise_test = opt_.error_control && hist_.raise_test_due(bopt_.max_order, bopt_.fixed_order);
     const bool ok = bdf_detail::correct(
         asm_, solver_, s_, y_p_, yp_p_, c, hist_.c_last(), w_, opt_.newton,
-        raise_test ? bopt_.raise_test_tolerance : bopt_.newton_tolerance,
-        bopt_.coefficient_change, bopt_.turn_refresh, mem, rhs_, dy_, stats_, last_failure_, stab_.rows.empty() ? nullptr : &stab_,
+        raise_test ? bopt_.raise_test_tolerance : bopt_.newton_tolerance, bopt_.coefficient_change,
+        bopt_.turn_refresh, mem, rhs_, dy_, stats_, last_failure_, stab_.rows.empty() ? nullptr : &stab_,
         rates_.empty() ? nullptr : &rates_, turned_.empty() ? nullptr : &turned_,
         [&](const jacobian_coefficients& jc, bool jac, bool rows, int k) {
           evaluate(jc, h, jac, k, true, rows ? &constraint_types_ : nullptr);
