@@ -7,7 +7,8 @@
 // cpu_per_simulated_s is the CPU time per simulated second (console: seconds with an SI
 // prefix, "250m" = 0.25 s of CPU per second of motion), steps_per_s the step rate.
 // mechanism_crankshaft_cb runs the crankshaft with its shaft as one Craig-Bampton body (FLEX3) and also
-// reports runout_difference, its bearing runout against the BEAM3 shaft's.
+// reports runout_difference, its bearing runout against the BEAM3 shaft's; mechanism_crankshaft_bdf runs
+// it with the BDF driver under error control.
 //
 // Full run (Release): build/release/bench/pradis_bench --benchmark_filter=mechanism
 //   --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <vector>
 
+#include "pradis/integrators/bdf/bdf_simulation.hpp"
 #include "pradis/integrators/simulation.hpp"
 #include "crankshaft/crankshaft_model.hpp"
 #include "spinning_top/top_model.hpp"
@@ -81,5 +83,46 @@ void mechanism_crankshaft_cb(benchmark::State& state) {
   state.counters["runout_difference"] = peak > 0 ? diff / peak : 0.0;
 }
 BENCHMARK(mechanism_crankshaft_cb)->ArgName("ms")->Arg(5)->Arg(100)->Unit(benchmark::kMillisecond);
+
+// The crankshaft with the variable-order BDF driver under error control, DRLTX = DABSX = 1e-4
+// (docs/bdf.md, "Stiff, excited modes: the crankshaft"); scaled:1 sets the nominal potential of the
+// angular DOFs to 100 rad/s (crankshaft::scale_angular_dofs), scaled:0 leaves it at 1 rad/s.
+// Counters as above, and error_rejections_per_step (error-test failures per accepted step) and
+// runout_at_end (bearing 1's runout at the end [m]; the example's fixed steps of 0.1 ms give 7.998e-6
+// at 100 ms, steps of 0.01 ms 8.076e-6).
+void mechanism_crankshaft_bdf(benchmark::State& state) {
+  const double end = static_cast<double>(state.range(0)) * 1e-3;
+  long steps = 0, rejections = 0;
+  double runout = 0;
+  for (auto _ : state) {
+    crankshaft::model_type m;
+    const auto h = crankshaft::build(m, crankshaft::parameters{});
+    if (state.range(1) != 0) crankshaft::scale_angular_dofs(m, h, 100.0);
+    pradis::bdf_simulation sim(m);
+    pradis::run_options o;
+    o.end = end;
+    o.error_control = true;
+    o.smax = 1e-3;
+    o.smin = 1e-12;
+    o.drltx = 1e-4;
+    o.dabsx = 1e-4;
+    const auto st = sim.run(o);
+    steps += st.steps;
+    rejections += st.error_rejections;
+    runout = std::hypot(sim.u(h.x[1][1]), sim.u(h.x[1][2]));
+  }
+  state.counters["cpu_per_simulated_s"] =
+      benchmark::Counter(end * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["steps_per_s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+  state.counters["error_rejections_per_step"] = steps > 0 ? static_cast<double>(rejections) / static_cast<double>(steps) : 0.0;
+  state.counters["runout_at_end"] = runout;
+}
+BENCHMARK(mechanism_crankshaft_bdf)
+    ->ArgNames({"ms", "scaled"})
+    ->Args({5, 1})
+    ->Args({100, 1})
+    ->Args({5, 0})
+    ->Args({100, 0})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

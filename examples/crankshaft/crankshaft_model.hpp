@@ -325,6 +325,25 @@ handles build(Model& m, const parameters& P) {
   return h;
 }
 
+/// Sets the nominal potential of the angular DOFs (q1..q4 of the rotational nodes,
+/// the drive and camshaft angles phi, cam) to w [rad/s]: under error control their
+/// absolute tolerance is DABSX w. With the default 1 rad/s the variable-order BDF
+/// driver resolves the crank pin's 5-6 kHz vibration in the rates of the nodes' q
+/// (docs/bdf.md, "Stiff, excited modes: the crankshaft"); 100 rad/s, about a fifth
+/// of the final speed, leaves it to the relative tolerance.
+template <class Model>
+void scale_angular_dofs(Model& m, const handles& h, double w) {
+  auto set = [&](dof d) { m.set_scale(d, {w, m.scale(d).flow}); };
+  auto set_node = [&](const rotation_node& r) {
+    for (const dof d : {r.q1, r.q2, r.q3, r.q4}) set(d);
+  };
+  for (std::size_t i = 0; i < h.r.size(); ++i)
+    if (h.present[i]) set_node(h.r[i]);
+  set_node(h.rod_r);
+  set(h.phi);
+  set(h.cam);
+}
+
 /// The radial runout sqrt(y^2 + z^2) of the two main journals (nodes 1 and 7) at every
 /// step of the first `end` seconds of the run-up, h = 0.1 ms as the example, on a model
 /// of type Model (model_type or cb_model_type).

@@ -686,4 +686,35 @@ TEST_SUITE("integrators/bdf") {
     CHECK(sim.time() < 0.5);
     CHECK(sim.statistics().rejected_steps > 0);
   }
+
+  TEST_CASE("after an error-test failure the step that follows the accepted redo may not grow") {
+    // The rule of CVODE (Hindmarsh et al., ACM TOMS 31 (2005) 363-396; cvDoErrorTest sets
+    // etamax = 1): IDA's rule alone would double the step after a redo whose error is small,
+    // and where a stiff, excited mode sets the step (the crankshaft of examples/crankshaft)
+    // that doubling failed again at every other attempt. The history of y' = 0 (its errors
+    // are zero) makes the step choice exact: without the rule every accepted step doubles.
+    bdf_detail::history hist;
+    const Eigen::VectorXd y = Eigen::VectorXd::Constant(1, 1.0), yp = Eigen::VectorXd::Zero(1),
+                          w = Eigen::VectorXd::Ones(1), zero = Eigen::VectorXd::Zero(1),
+                          big = Eigen::VectorXd::Constant(1, 10.0);
+    hist.start(y, yp, 0.1);
+    auto accept = [&](const Eigen::VectorXd& e) {
+      hist.set_coefficients();
+      REQUIRE(hist.test_error(e, w, false).passed);
+      hist.complete(e, w, 5, false, true, 100.0);
+    };
+    accept(zero);
+    accept(zero);
+    const double before = hist.step();
+    hist.set_coefficients();
+    REQUIRE_FALSE(hist.test_error(big, w, false).passed);
+    hist.restore();
+    hist.on_error_failure(1, false);
+    const double redo = hist.step();
+    CHECK(redo < before);
+    accept(zero);  // the redo, with no error: IDA's rule alone would give 2 redo
+    CHECK(hist.step() == redo);
+    accept(zero);  // the next step grows again
+    CHECK(hist.step() == 2 * redo);
+  }
 }

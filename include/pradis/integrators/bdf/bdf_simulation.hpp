@@ -124,7 +124,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       fail_option("PREDICT does not apply: the BDF predictor is the interpolating polynomial of the last k + 1 steps");
     const run_statistics before = stats_;
     opt_ = opt;
-    jac_valid_ = false;
+    newton_.valid = false;
     if (!started_) {
       zero_step();
     } else {
@@ -206,7 +206,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   /// the pattern is analysed again.
   void set_solver(Solver s) {
     solver_ = std::move(s);
-    jac_valid_ = false;
+    newton_.valid = false;
     if (started_) build();
   }
 
@@ -271,14 +271,14 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       if (driven) log_.write(detail::bdf_driven_constraint_note(driven->first, driven->second));
       if (driven || !bopt_.stabilised_index2) log_.write(std::string(detail::bdf_index3_warning));
     }
-    jac_valid_ = false;  // the solver holds the factorisation of the initial-derivative matrix
+    newton_.valid = false;  // the solver holds the factorisation of the initial-derivative matrix
     this->finish_zero_step();
     notify();
   }
   /// (Re)builds the equations and analyses the pattern.
   void build() {
     this->rebuild_equations();
-    jac_valid_ = false;
+    newton_.valid = false;
     try {
       solver_.analyze(asm_.pattern());
     } catch (const error& e) {
@@ -366,19 +366,15 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     detail::apply_sources(m_, s_, t_);
     hist_.predict(y_p_, yp_p_);
     const long iter0 = stats_.newton_iterations;
-    bdf_detail::newton_memory mem{jac_valid_, c_jac_, ss_};
     const bool raise_test = opt_.error_control && hist_.raise_test_due(bopt_.max_order, bopt_.fixed_order);
     const bool ok = bdf_detail::correct(
         asm_, solver_, s_, y_p_, yp_p_, c, hist_.c_last(), w_, opt_.newton,
         raise_test ? bopt_.raise_test_tolerance : bopt_.newton_tolerance, bopt_.coefficient_change,
-        bopt_.turn_refresh, mem, rhs_, dy_, stats_, last_failure_, stab_.rows.empty() ? nullptr : &stab_,
+        bopt_.turn_refresh, newton_, rhs_, dy_, stats_, last_failure_, stab_.rows.empty() ? nullptr : &stab_,
         rates_.empty() ? nullptr : &rates_, turned_.empty() ? nullptr : &turned_,
         [&](const jacobian_coefficients& jc, bool jac, bool rows, int k) {
           evaluate(jc, h, jac, k, true, rows ? &constraint_types_ : nullptr);
         });
-    jac_valid_ = mem.valid;
-    c_jac_ = mem.c_jac;
-    ss_ = mem.ss;
     const int ne = asm_.equations();
     if (ok) {
       if (auto e = detail::non_finite_state(m_, asm_, s_, t_, h)) raise(*e);
@@ -435,7 +431,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     if (converged_state_evaluation_) evaluate({0, 0, 0}, h, false, 0, true);
     hist_.complete(e_, w_, bopt_.max_order, bopt_.fixed_order, opt_.error_control, opt_.smax);
     if (bdf_detail::renormalise_rotation_nodes(m_.rotation_nodes(), asm_, s_, hist_, bopt_.lq_renormalise, rates_) > 0)
-      jac_valid_ = false;  // dF/dq scales with the node
+      newton_.valid = false;  // dF/dq scales with the node
     if (opt_.error_control && hist_.step() < opt_.control) hist_.set_step(std::min(opt_.control, opt_.smax));
     if (!opt_.error_control) {
       // The start without error control: the step grows from SMIN to SMAX by a
@@ -479,15 +475,13 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   std::vector<observer> observers_;
   std::vector<observer> step_observers_;
   Eigen::VectorXd y_p_, yp_p_, w_, e_, dy_;
-  double c_jac_ = 0;  // c of the kept factorisation
-  double ss_ = 20;    // IDA's rate / (1 - rate) estimate for the first Newton correction
+  bdf_detail::newton_memory newton_;  // the kept factorisation, its c and Newton's rate estimate
   std::vector<char> index2_;  // by equation: a DOF of an index-3 constraint's row (mark_constraints)
   bdf_detail::rotated_jacobian turned_;    // the kept Newton matrix turned with the rotational nodes
   bdf_detail::rate_form rates_;            // rotational nodes whose velocity rows hold (w, r) (rate_form.hpp)
   bdf_detail::index2_stabilisation stab_;  // the stabilised index-2 form (empty: none, or the plain index-3 form)
   std::vector<char> constraint_types_;     // per element type: owns an index-3 multiplier (bdf_detail::constraint_types)
   int nef_ = 0, ncf_ = 0;
-  bool jac_valid_ = false;
   bool converged_state_evaluation_ = true;  // evaluate after an accepted step to commit the states
 };
 
