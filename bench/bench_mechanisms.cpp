@@ -111,10 +111,11 @@ void mechanism_crankshaft_bdf(benchmark::State& state) {
     rejections += st.error_rejections;
     runout = std::hypot(sim.u(h.x[1][1]), sim.u(h.x[1][2]));
   }
-  state.counters["cpu_per_simulated_s"] =
-      benchmark::Counter(end * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["cpu_per_simulated_s"] = benchmark::Counter(end * static_cast<double>(state.iterations()),
+                                                             benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["steps_per_s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
-  state.counters["error_rejections_per_step"] = steps > 0 ? static_cast<double>(rejections) / static_cast<double>(steps) : 0.0;
+  state.counters["error_rejections_per_step"] =
+      steps > 0 ? static_cast<double>(rejections) / static_cast<double>(steps) : 0.0;
   state.counters["runout_at_end"] = runout;
 }
 BENCHMARK(mechanism_crankshaft_bdf)

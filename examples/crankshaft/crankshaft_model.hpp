@@ -328,7 +328,7 @@ handles build(Model& m, const parameters& P) {
 /// Sets the nominal potential of the angular DOFs (q1..q4 of the rotational nodes,
 /// the drive and camshaft angles phi, cam) to w [rad/s]: under error control their
 /// absolute tolerance is DABSX w. With the default 1 rad/s the variable-order BDF
-/// driver resolves the crank pin's 5-6 kHz vibration in the rates of the nodes' q
+/// driver resolves the crank pin's vibration (about 5 kHz) in the rates of the nodes' q
 /// (docs/bdf.md, "Stiff, excited modes: the crankshaft"); 100 rad/s, about a fifth
 /// of the final speed, leaves it to the relative tolerance.
 template <class Model>

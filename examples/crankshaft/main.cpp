@@ -10,10 +10,14 @@
 // (<dir>/vtk/crankshaft.pvd: shaft nodes and beams, rod, piston; open it in
 // ParaView) and, unless --no-plot, a plot (PNG, with gnuplot).
 //
-// Usage: crankshaft [output-directory] [--no-plot] [--quick] [--no-gas] [--cb]
+// Usage: crankshaft [output-directory] [--no-plot] [--quick] [--no-gas] [--cb] [--bdf]
 //        (--quick: the first 0.04 s of the run-up, for the ctest smoke run;
 //         --no-gas: without the gas force, to see the inertia forces alone;
-//         --cb: the shaft as one Craig-Bampton body, FLEX3, instead of the beams)
+//         --cb: the shaft as one Craig-Bampton body, FLEX3, instead of the beams;
+//         --bdf: the variable-order BDF driver under error control, DRLTX = DABSX = 1e-4,
+//         with the angular DOFs at the nominal potential 100 rad/s (crankshaft::
+//         scale_angular_dofs; docs/bdf.md, "Stiff, excited modes: the crankshaft"),
+//         instead of the default one-step scheme at fixed steps of 0.1 ms)
 
 #include <algorithm>
 #include <array>
@@ -28,6 +32,7 @@
 #include <type_traits>
 
 #include "crankshaft_model.hpp"
+#include "pradis/integrators/bdf/bdf_simulation.hpp"
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/io/table.hpp"
 #include "pradis/io/vtk_series.hpp"
@@ -35,8 +40,9 @@
 
 namespace {
 
-/// Runs the example on a model of type Model (crankshaft::model_type or cb_model_type).
-template <class Model>
+/// Runs the example on a model of type Model (crankshaft::model_type or cb_model_type),
+/// with the BDF driver when Bdf, else with the default one-step scheme.
+template <class Model, bool Bdf>
 int run(const std::string& dir, bool plot, bool quick, bool gas) {
   using namespace pradis;
   const double pi = std::numbers::pi, rpm = 60 / (2 * pi);
@@ -44,6 +50,7 @@ int run(const std::string& dir, bool plot, bool quick, bool gas) {
   if (!gas) P.p_peak = 0;
   Model m;
   const crankshaft::handles h = crankshaft::build(m, P);
+  if constexpr (Bdf) crankshaft::scale_angular_dofs(m, h, 100.0);
   const double y_tdc = P.r + P.l;  // piston pin at top dead centre
 
   io::table out({"speed [rev/min]", "drive speed [rev/min]", "runout bearing 1 [um]", "runout bearing 2 [um]",
@@ -63,7 +70,12 @@ int run(const std::string& dir, bool plot, bool quick, bool gas) {
   scene.vertex(node.back());  // the flywheel
   io::vtk_series vtk(dir + "/vtk", "crankshaft", scene);
   long output = 0;
-  simulation sim(m);
+  double next_frame = 0;  // BDF: the time of the next animation frame
+  auto make = [&] {
+    if constexpr (Bdf) return bdf_simulation(m);
+    else return simulation(m);
+  };
+  auto sim = make();
   double peak1 = 0, peak2 = 0, peak_speed1 = 0, worst_lag = 0, worst_law = 0;
   std::array<double, 10> band{};  // peak runout of bearing 1 per 500 rev/min band of the speed
   sim.on_output([&](const auto& s) {
@@ -81,14 +93,29 @@ int run(const std::string& dir, bool plot, bool quick, bool gas) {
     worst_lag = std::max(worst_lag, std::abs(w - s.v(h.phi)) * rpm);
     const int k = std::clamp(static_cast<int>(w * rpm / 500), 0, 9);
     band[static_cast<std::size_t>(k)] = std::max(band[static_cast<std::size_t>(k)], r1);
-    if (output++ % 20 == 0) vtk.write(s);  // every 2 ms
+    if constexpr (Bdf) {  // the steps vary: the first output at or after every 2 ms
+      if (s.time() >= next_frame - 1e-12) {
+        vtk.write(s);
+        next_frame += 2e-3;
+      }
+    } else if (output++ % 20 == 0) {
+      vtk.write(s);  // every 2 ms
+    }
     const auto fb = m.work(h.big_end);
     out.add_row(s.time(), {w * rpm, s.v(h.phi) * rpm, r1 * 1e6, r2 * 1e6, y_tdc + s.u(h.py), m.work(h.drive)[2],
                            std::hypot(fb[1], fb[2], fb[3])});
   });
   const double end = quick ? 0.04 : P.t_run, step = 1e-4;
   const auto t0 = std::chrono::steady_clock::now();
-  sim.run({.end = end, .out = 0, .smax = step});
+  run_options o{.end = end, .out = 0, .smax = step};
+  if constexpr (Bdf) {
+    o.smax = 1e-3;
+    o.smin = 1e-12;
+    o.error_control = true;
+    o.drltx = 1e-4;
+    o.dabsx = 1e-4;
+  }
+  sim.run(o);
   const double cpu = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const std::string csv = dir + "/crankshaft.csv";
@@ -101,7 +128,12 @@ int run(const std::string& dir, bool plot, bool quick, bool gas) {
             << "\n"
             << "animation: " << vtk.frames() << " frames, " << vtk.collection().string() << " (ParaView)\n"
             << "simulated " << end << " s (run-up to " << P.w_end * rpm * std::sin(pi / 2 * end / P.t_run)
-            << " rev/min), step " << step << " s, " << m.dof_count() << " DOFs\n"
+            << " rev/min), ";
+  if constexpr (Bdf)
+    std::cout << "driver: BDF, DRLTX = DABSX = 1e-4, angular DOFs at 100 rad/s";
+  else
+    std::cout << "driver: one-step scheme, step " << step << " s";
+  std::cout << ", " << m.dof_count() << " DOFs\n"
             << "steps " << st.steps << ", rejected " << st.rejected_steps << ", Newton iterations "
             << st.newton_iterations << "\n"
             << "CPU (wall) time " << cpu << " s, " << cpu / end << " s per simulated second\n"
@@ -145,20 +177,25 @@ int run(const std::string& dir, bool plot, bool quick, bool gas) {
 
 int main(int argc, char** argv) try {
   std::string dir = "out";
-  bool plot = true, quick = false, gas = true, cb = false;
+  bool plot = true, quick = false, gas = true, cb = false, bdf = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--no-plot") plot = false;
     else if (a == "--quick") quick = true;
     else if (a == "--no-gas") gas = false;
     else if (a == "--cb") cb = true;
+    else if (a == "--bdf") bdf = true;
     else if (a == "--help" || a == "-h") {
-      std::cout << "usage: crankshaft [output-directory] [--no-plot] [--quick] [--no-gas] [--cb]\n";
+      std::cout << "usage: crankshaft [output-directory] [--no-plot] [--quick] [--no-gas] [--cb] [--bdf]\n";
       return 0;
     } else dir = a;
   }
   std::filesystem::create_directories(dir);
-  return cb ? run<crankshaft::cb_model_type>(dir, plot, quick, gas) : run<crankshaft::model_type>(dir, plot, quick, gas);
+  if (cb)
+    return bdf ? run<crankshaft::cb_model_type, true>(dir, plot, quick, gas)
+               : run<crankshaft::cb_model_type, false>(dir, plot, quick, gas);
+  return bdf ? run<crankshaft::model_type, true>(dir, plot, quick, gas)
+             : run<crankshaft::model_type, false>(dir, plot, quick, gas);
 } catch (const pradis::error& e) {
   std::cerr << e.what() << "\n";
   return 1;
