@@ -179,7 +179,8 @@ class history {
   /// after the accepted redo is at most the redo's (complete(); CVODE's rule
   /// after a failure): the doubling that IDA's rule would allow there tends to
   /// fail again where a stiff, excited mode sets the step, and the steps then
-  /// alternate between failing and passing (docs/bdf.md, "Step and order").
+  /// alternate between failing and passing (docs/bdf.md, "Error control and
+  /// tolerances": "Stiff, excited modes: the crankshaft").
   void on_error_failure(int nef, bool fixed) {
     phase_ = 1;
     hold_ = true;
