@@ -90,7 +90,9 @@ struct rigid_body_t {
   /// The inertia tensor about the centre of mass in the body frame.
   spatial::mat3 inertia() const {
     spatial::mat3 j;
-    j << p.jxx, p.jxy, p.jxz, p.jxy, p.jyy, p.jyz, p.jxz, p.jyz, p.jzz;
+    j(0, 0) = p.jxx, j(0, 1) = p.jxy, j(0, 2) = p.jxz;
+    j(1, 0) = p.jxy, j(1, 1) = p.jyy, j(1, 2) = p.jyz;
+    j(2, 0) = p.jxz, j(2, 1) = p.jyz, j(2, 2) = p.jzz;
     return j;
   }
   /// The centre of mass from the reference point in the body frame.
@@ -126,12 +128,15 @@ struct rigid_body_t {
     const vec3 alpha1 = (2.0 / s) * (e * qdd);
     const vec3 alpha = alpha1 - (2.0 * g / s) * w;      // d omega / dt
     const vec3 rho = r * offset();
-    const mat3 a = r * inertia() * r.transpose();
-    const vec3 h = a * w;
+    // A x = R (J (R^T x)): matrix-vector products only (A itself only for the Jacobian).
+    const mat3 j = inertia();
+    const vec3 wb = r.transpose().lazyProduct(w), ab = r.transpose().lazyProduct(alpha);
+    const vec3 jwb = j.lazyProduct(wb), jab = j.lazyProduct(ab);
+    const vec3 h = r.lazyProduct(jwb), a_alpha = r.lazyProduct(jab);
     const vec3 xdd = in.a.head<3>();
     const vec3 ac = xdd + alpha.cross(rho) + w.cross(w.cross(rho));
     const vec3 f = p.m * ac;
-    const vec3 n = a * alpha + w.cross(h) + rho.cross(f);
+    const vec3 n = a_alpha + w.cross(h) + rho.cross(f);
     out.f.head<3>() = f;
     out.f.segment<3>(3) = n;
     out.f(6) = 0.0;
@@ -145,34 +150,51 @@ struct rigid_body_t {
     ctx.work[6] = w.z();
     if (!out.want_jacobian) return;
 
-    // Partial derivatives of (F, N) by x'', alpha, omega and a small global rotation theta.
-    const mat3 sr = skew(rho), sw = skew(w), sa = skew(alpha);
-    const mat3 df_dalpha = -p.m * sr;
-    const mat3 dn_dalpha = a - p.m * sr * sr;
-    const mat3 df_dw = p.m * (w * rho.transpose() + w.dot(rho) * mat3::Identity() - 2.0 * rho * w.transpose());
-    const mat3 dn_dw = -skew(h) + sw * a + sr * df_dw;
-    const mat3 df_dth = p.m * (sa + sw * sw) * (-sr);
-    const mat3 dn_dth = -skew(a * alpha) + a * sa + sw * (-skew(h) + a * sw) + skew(f) * sr + sr * df_dth;
-    // Derivatives of theta, omega, alpha by q, q', q''.
-    const mat34 dth_dq = (2.0 / s) * e;
-    const mat34 dw_dq = -(2.0 / s) * (e_matrix(qd) + w * q.transpose());
-    const mat34 dw_dqd = (2.0 / s) * e;
-    const mat34 dal_dq = -(2.0 / s) * e_matrix(qdd) - (2.0 / s) * alpha1 * q.transpose() -
-                         (2.0 / s) * w * qd.transpose() - (2.0 * g / s) * dw_dq + (4.0 * g / (s * s)) * w * q.transpose();
-    const mat34 dal_dqd = -(2.0 / s) * (w * q.transpose() + g * dw_dqd);
-    const mat34 dal_dqdd = (2.0 / s) * e;
-
+    // Partial derivatives of (F, N) by x'', alpha, omega and a small global rotation
+    // theta, stacked as 6 x 3 blocks D_th, D_w, D_al (rows F then N).
+    using mat63 = Eigen::Matrix<double, 6, 3>;
+    using mat64 = Eigen::Matrix<double, 6, 4>;
+    using vec6 = Eigen::Matrix<double, 6, 1>;
+    const mat3 a = r.lazyProduct(j).eval().lazyProduct(r.transpose());
+    const mat3 sr = skew(rho), sw = skew(w), sa = skew(alpha), sh = skew(h);
+    mat63 d_al, d_w, d_th;
+    const mat3 f_al = -p.m * sr;
+    const mat3 f_w = p.m * (w * rho.transpose() + w.dot(rho) * mat3::Identity() - 2.0 * rho * w.transpose());
+    const mat3 f_th = -p.m * (sa + sw.lazyProduct(sw)).eval().lazyProduct(sr);
+    d_al.topRows<3>() = f_al;
+    d_al.bottomRows<3>() = a + sr.lazyProduct(f_al);
+    d_w.topRows<3>() = f_w;
+    d_w.bottomRows<3>() = sw.lazyProduct(a) - sh + sr.lazyProduct(f_w);
+    d_th.topRows<3>() = f_th;
+    d_th.bottomRows<3>() = a.lazyProduct(sa) - skew(a_alpha) + sw.lazyProduct((a.lazyProduct(sw) - sh).eval()) +
+                           skew(f).lazyProduct(sr) + sr.lazyProduct(f_th);
+    // The chain rule through theta, omega, alpha as functions of q, q', q'' with
+    // E2 = (2/s) E(q) = d theta/dq = d omega/dq' = d alpha/dq'':
+    //   d omega/dq   = -(2/s) (E(q') + omega q^T)
+    //   d alpha/dq   = -(2/s) (E(q'') + alpha1 q^T + omega q'^T) - (2g/s) d omega/dq + (4g/s^2) omega q^T
+    //   d alpha/dq'  = -(2/s) omega q^T - (2g/s) E2
+    // (alpha1 = (2/s) E(q) q'', g = q.q'), so with X = D_w - (2g/s) D_al:
+    //   M = D_al E2
+    //   C = D_w E2 - (2g/s) M - (2/s) (D_al omega) q^T
+    //   K = D_th E2 - (2/s) (X E(q') + D_al E(q'')) + [(4g/s^2) D_al omega - (2/s) (X omega + D_al alpha1)] q^T
+    //       - (2/s) (D_al omega) q'^T
+    const double c2 = 2.0 / s, cg = 2.0 * g / s;
+    const mat34 e2 = c2 * e;
+    const mat63 x = d_w - cg * d_al;
+    const vec6 dal_w = d_al.lazyProduct(w);
+    const vec6 kq = (cg * c2) * dal_w - c2 * (x.lazyProduct(w) + d_al.lazyProduct(alpha1));
+    const mat64 mb = d_al.lazyProduct(e2);
+    const mat64 cb = d_w.lazyProduct(e2) - cg * mb - c2 * dal_w * q.transpose();
+    const mat64 kb = d_th.lazyProduct(e2) - c2 * (x.lazyProduct(e_matrix(qd)) + d_al.lazyProduct(e_matrix(qdd))) +
+                     kq * q.transpose() - c2 * dal_w * qd.transpose();
     out.K.setZero();
     out.C.setZero();
     out.M.setZero();
-    out.K.block<3, 4>(0, 3) = df_dth * dth_dq + df_dw * dw_dq + df_dalpha * dal_dq;
-    out.K.block<3, 4>(3, 3) = dn_dth * dth_dq + dn_dw * dw_dq + dn_dalpha * dal_dq;
-    out.C.block<3, 4>(0, 3) = df_dw * dw_dqd + df_dalpha * dal_dqd;
-    out.C.block<3, 4>(3, 3) = dn_dw * dw_dqd + dn_dalpha * dal_dqd;
     out.M.block<3, 3>(0, 0) = p.m * mat3::Identity();
     out.M.block<3, 3>(3, 0) = p.m * sr;
-    out.M.block<3, 4>(0, 3) = df_dalpha * dal_dqdd;
-    out.M.block<3, 4>(3, 3) = dn_dalpha * dal_dqdd;
+    out.M.block<6, 4>(0, 3) = mb;
+    out.C.block<6, 4>(0, 3) = cb;
+    out.K.block<6, 4>(0, 3) = kb;
   }
 
   /// States the checks may use: the quaternion norm is not near zero.

@@ -155,12 +155,21 @@ class history {
     const double terr_k = (k_ + 1) * r.err_k;
     r.knew = k_;
     if (k_ > 1) {
-      delta_ = phi_.col(k_) + e;
-      r.err_km1 = sigma_[k_ - 1] * wrms(delta_, w);
+      // |phi_k + e| and |phi_k + phi_{k-1} + e| in one pass (wrms of each).
+      const Eigen::Index n = e.size();
+      const double* const pk = phi_.data() + k_ * n;
+      const double* const pkm1 = pk - n;
+      double s1 = 0, s2 = 0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double d1 = pk[i] + e[i], d2 = d1 + pkm1[i];
+        s1 += (d1 * w[i]) * (d1 * w[i]);
+        s2 += (d2 * w[i]) * (d2 * w[i]);
+      }
+      const double nn = n > 0 ? static_cast<double>(n) : 1.0;
+      r.err_km1 = sigma_[k_ - 1] * std::sqrt(s1 / nn);
       const double terr_km1 = k_ * r.err_km1;
       if (k_ > 2) {
-        delta_ += phi_.col(k_ - 1);
-        const double terr_km2 = (k_ - 1) * sigma_[k_ - 2] * wrms(delta_, w);
+        const double terr_km2 = (k_ - 1) * sigma_[k_ - 2] * std::sqrt(s2 / nn);
         if (std::max(terr_km1, terr_km2) <= terr_k) r.knew = k_ - 1;
       } else if (terr_km1 <= 0.5 * terr_k) {
         r.knew = k_ - 1;
@@ -243,8 +252,14 @@ class history {
     } else if (k_ >= max_order || k_ + 1 >= ns_ || kdiff == 1) {
       act = action::maintain;
     } else {
-      delta_ = e - phi_.col(k_ + 1);
-      err_kp1 = wrms(delta_, w) / (k_ + 2);
+      const Eigen::Index n = e.size();
+      const double* const pkp1 = phi_.data() + (k_ + 1) * n;
+      double s2 = 0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double d = (e[i] - pkp1[i]) * w[i];
+        s2 += d * d;
+      }
+      err_kp1 = (n > 0 ? std::sqrt(s2 / static_cast<double>(n)) : 0.0) / (k_ + 2);
       const double terr_k = (k_ + 1) * last_.err_k, terr_kp1 = (k_ + 2) * err_kp1;
       if (k_ == 1) {
         act = terr_kp1 >= 0.5 * terr_k ? action::maintain : action::raise;
@@ -274,7 +289,6 @@ class history {
   }
 
   Eigen::MatrixXd phi_;
-  Eigen::VectorXd delta_;
   std::array<double, kmax + 2> psi_{}, alpha_{}, beta_{}, sigma_{}, gamma_{};
   double h_ = 0, hused_ = 0, cj_ = 0, cjlast_ = 0, ck_ = 0;
   bool hold_ = false;  // the step just accepted redid an error-test failure: the next may not grow
