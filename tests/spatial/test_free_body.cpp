@@ -12,9 +12,11 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
+#include "pradis/testing/jacobian_check.hpp"
 #include "spatial_test_support.hpp"
 
 using namespace pradis;
@@ -234,5 +236,51 @@ TEST_SUITE("spatial/free body") {
     CHECK(err_after < 1e-3);
     CHECK(e_drift < 1e-4);
     CHECK(h_drift < 1e-4);
+  }
+
+  TEST_CASE("BODY3 with its centre of mass on its node: translation and rotation apart in the Newton matrix") {
+    // With c = 0, F = m x'' and N does not depend on x, y, z (rigid_body.hpp), so the
+    // element declares the coupling entries structurally zero (jacobian_entry). The
+    // claim is checked by finite differences, and the assembled pattern of the free
+    // body holds the three translational diagonals and the node's 4 x 4 block only.
+    using elements::rigid_body;
+    testing::jacobian_checker<rigid_body> chk(rigid_body({1.5, 2.0, 1.0, 0.5, 0.1, -0.05, 0.02, 0, 0, 0}));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> uni(-1.0, 1.0);
+    for (int trial = 0; trial < 50; ++trial) {
+      local_input<rigid_body> in;
+      for (int k = 0; k < 7; ++k) in.u(k) = uni(rng), in.v(k) = 10 * uni(rng), in.a(k) = 10 * uni(rng);
+      in.u(6) = 1 + 0.5 * uni(rng);  // |q| away from 0
+      const auto r = chk.check(in);
+      CHECK(r.ok);
+      if (!r.ok) break;
+    }
+    CHECK_FALSE(jacobian_entry_of(chk.element(), 3, 0));  // the moments do not depend on x
+    CHECK_FALSE(jacobian_entry_of(chk.element(), 0, 3));  // the forces not on q
+    CHECK_FALSE(jacobian_entry_of(chk.element(), 0, 1));
+    CHECK(jacobian_entry_of(chk.element(), 3, 6));
+
+    const vec3 m0(std::cos(1.1), 0.0, std::sin(1.1)), inertia(2.0, 1.0, 2.0 / 3.0);
+    free_body b(inertia, m0.cwiseQuotient(inertia));
+    bdf_simulation sim(b.m);
+    run_options o;
+    o.end = 1.0;
+    o.error_control = true;
+    o.drltx = 1e-6;
+    sim.run(o);
+    const auto& as = sim.get_assembler();
+    CHECK(as.pattern().nnz() == 3 + 16);
+    for (int k = 0; k < 3; ++k) {
+      const int e = as.equation_of(b.x[static_cast<std::size_t>(k)].index);
+      CHECK(as.pattern().row_ptr[static_cast<std::size_t>(e) + 1] - as.pattern().row_ptr[static_cast<std::size_t>(e)] ==
+            1);
+    }
+    // An offset set in place couples them: after structure_changed() the next run
+    // rebuilds the pattern (rows 1-6 of BODY3 in full, the node's norm row).
+    b.m.instances<rigid_body>()[0].element = rigid_body({1.0, 2.0, 1.0, 2.0 / 3.0, 0, 0, 0, 0.1, 0, 0});
+    b.m.structure_changed();
+    o.end = 2.0;
+    sim.run(o);
+    CHECK(sim.get_assembler().pattern().nnz() == 6 * 7 + 4);
   }
 }

@@ -126,9 +126,43 @@ struct hidden_damper {
   }
 };
 
+// LINKD claiming that its first flow does not depend on the second DOF (dF1/dX2 = 0),
+// which is false: the checker must reject the claim.
+struct wrong_structure_link : elements::planar_link {
+  static constexpr pradis::passport passport{.name = "WRONGS", .ext = 4, .par = 5, .wrk = 3, .adr = 1, .ign = 23};
+  using elements::planar_link::planar_link;
+  static wrong_structure_link from_parameters(std::span<const double> v) {
+    return wrong_structure_link({v[0], v[1], v[2], v[3], v[4]});
+  }
+  void evaluate(const local_input<wrong_structure_link>& in, local_output<wrong_structure_link>& out,
+                element_context& ctx) const {
+    local_input<elements::planar_link> i2;
+    i2.u = in.u;
+    local_output<elements::planar_link> o2;
+    elements::planar_link::evaluate(i2, o2, ctx);
+    out.f = o2.f;
+    out.K = o2.K;
+  }
+  bool jacobian_entry(int r, int c) const { return !(r == 0 && c == 1); }
+};
+
 }  // namespace
 
 TEST_SUITE("testing/jacobian_check") {
+  TEST_CASE("the checker rejects a declared Jacobian structure that leaves out a nonzero entry") {
+    static_assert(HasJacobianStructure<wrong_structure_link>);
+    testing::jacobian_checker<wrong_structure_link> chk(wrong_structure_link({0, 0, 1, 0.5, 5e3}));
+    local_input<wrong_structure_link> in;
+    in.u << 0.1, -0.2, 0.05, 0.3;  // the link is stretched and turned: dF1/dX2 != 0
+    auto r = chk.check(in);
+    CHECK_FALSE(r.ok);
+    REQUIRE(!r.problems.empty());
+    CHECK(r.problems.front().find("dF1/du2 lies outside the structure") != std::string::npos);
+    // The diagonal is always part of the structure, whatever the element says.
+    CHECK(jacobian_entry_of(chk.element(), 1, 1));
+    CHECK_FALSE(jacobian_entry_of(chk.element(), 0, 1));
+  }
+
   TEST_CASE("every library element passes the finite-difference Jacobian check at 200 random states") {
     check_all(elements::library_elements{});
   }

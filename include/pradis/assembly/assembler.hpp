@@ -89,13 +89,18 @@ class assembler<model<Es...>> {
       }
     const int ne = static_cast<int>(dof_of_eq_.size());
     std::vector<std::pair<int, int>> entries;
+    // Every local entry an element may fill (jacobian_entry_of: all, unless the
+    // element declares its structure).
     m.for_each_instances([&](const auto& vec) {
-      for (const auto& in : vec)
-        for (int r : in.dofs)
-          for (int c : in.dofs) {
-            const int er = eq_of_dof_[static_cast<std::size_t>(r)], ec = eq_of_dof_[static_cast<std::size_t>(c)];
-            if (er >= 0 && ec >= 0) entries.emplace_back(er, ec);
+      for (const auto& in : vec) {
+        const int n = static_cast<int>(in.dofs.size());
+        for (int r = 0; r < n; ++r)
+          for (int c = 0; c < n; ++c) {
+            const int er = eq_of_dof_[static_cast<std::size_t>(in.dofs[static_cast<std::size_t>(r)])];
+            const int ec = eq_of_dof_[static_cast<std::size_t>(in.dofs[static_cast<std::size_t>(c)])];
+            if (er >= 0 && ec >= 0 && jacobian_entry_of(in.element, r, c)) entries.emplace_back(er, ec);
           }
+      }
     });
     // Rotational nodes: the 4 x 4 block of q1..q4 (the norm equation fills the q4 row).
     for (const auto& node : m.rotation_nodes())
@@ -131,7 +136,7 @@ class assembler<model<Es...>> {
                     for (int c = 0; c < n; ++c) {
                       const int er = eq_of_dof_[static_cast<std::size_t>(vec[i].dofs[static_cast<std::size_t>(r)])];
                       const int ec = eq_of_dof_[static_cast<std::size_t>(vec[i].dofs[static_cast<std::size_t>(c)])];
-                      if (er >= 0 && ec >= 0)
+                      if (er >= 0 && ec >= 0 && jacobian_entry_of(vec[i].element, r, c))
                         map.entries.push_back({storage_index<E>(r, c), pattern_.find(er, ec)});
                     }
                   map.first[i + 1] = static_cast<int>(map.entries.size());

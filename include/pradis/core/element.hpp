@@ -127,6 +127,30 @@ bool body_fixed_flows_of(const E& e) {
     return false;
 }
 
+/// Whether E says which of its local Jacobian entries can be nonzero for its
+/// parameters: an optional member `bool jacobian_entry(int r, int c) const` (flow
+/// r, DOF c, 0-based local indices). The assembler leaves the other entries out
+/// of the Newton matrix's sparsity pattern and never visits them (the diagonal is
+/// always kept), so that, e.g., a rigid body with its centre of mass on its
+/// reference point factorises its translation apart from its rotation. The
+/// claim must hold in every block (K, C, M) at every state: the finite-difference
+/// checker (testing/jacobian_check.hpp) fails an entry outside it that is not
+/// zero. Without the member: every entry.
+template <class E>
+concept HasJacobianStructure = requires(const E& e, int r, int c) {
+  { e.jacobian_entry(r, c) } -> std::convertible_to<bool>;
+};
+
+/// Whether the assembler keeps the local Jacobian entry (r, c) of e: the diagonal
+/// always, the others as e.jacobian_entry(r, c) says if E declares it, else all.
+template <class E>
+bool jacobian_entry_of(const E& e, int r, int c) {
+  if constexpr (HasJacobianStructure<E>)
+    return r == c || static_cast<bool>(e.jacobian_entry(r, c));
+  else
+    return true;
+}
+
 /// Checks the rotational-node declaration of an element with EXT = ext and ENT = ent;
 /// nullptr when valid, otherwise one sentence.
 template <std::size_t K>

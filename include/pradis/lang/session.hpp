@@ -425,6 +425,7 @@ class session : public action_checker, public stage_drivers<session> {
         if (t++ == loc.type)
           model_->instances<E>()[static_cast<std::size_t>(loc.index)].element = E::from_parameters(v);
       });
+      model_->structure_changed();  // the element's Jacobian structure may depend on its parameters
       r.values = std::move(v);
     }
   }

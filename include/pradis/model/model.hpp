@@ -308,8 +308,14 @@ class model {
   std::vector<double>& new_state_pool() noexcept { return new_state_; }
   /// Total number of element instances.
   std::size_t element_count() const noexcept { return by_name_.size(); }
-  /// A counter that changes whenever DOFs or elements are added (topology changes).
+  /// A counter that changes whenever DOFs or elements are added (topology changes)
+  /// or structure_changed() is called.
   std::size_t topology_version() const noexcept { return version_ + dof_names_.size(); }
+  /// Tells the drivers to rebuild the Newton matrix's pattern before their next
+  /// run: call it after changing an element's parameters in place (instances()),
+  /// since an element may declare a Jacobian structure that depends on them
+  /// (core/element.hpp, HasJacobianStructure).
+  void structure_changed() noexcept { ++version_; }
 
  private:
   template <class E, std::size_t K>

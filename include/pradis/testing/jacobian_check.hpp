@@ -6,7 +6,8 @@
 /// differences, compares the numerical derivatives with every block the passport
 /// declares, reports per-entry absolute and relative differences, checks that
 /// the difference shrinks when the perturbation shrinks, and checks that blocks
-/// ADR/IGN declare absent really are zero.
+/// ADR/IGN declare absent, and entries outside the structure an element declares
+/// (jacobian_entry, core/element.hpp), really are zero.
 ///
 ///     pradis::testing::jacobian_checker<pradis::elements::planar_link> chk(link);
 ///     auto r = chk.check(state);
@@ -170,7 +171,12 @@ class jacobian_checker {
         const double d = e.abs_diff();
         const double allowed = o_.tolerance * scale + o_.zero_floor;
         r.max_scaled_error = std::max(r.max_scaled_error, d / std::max(scale, 1e-300));
-        if (!declared && std::abs(e.numeric) > allowed) {
+        if (!jacobian_entry_of(e_, i, j) && (std::abs(e.numeric) > allowed || std::abs(e.analytic) > allowed)) {
+          r.ok = false;
+          r.problems.push_back(std::string("dF") + std::to_string(i + 1) + "/d" + var<B>() + std::to_string(j + 1) +
+                               " lies outside the structure the element declares (jacobian_entry) but is not zero:"
+                               " analytic " + std::to_string(e.analytic) + ", numeric " + std::to_string(e.numeric));
+        } else if (!declared && std::abs(e.numeric) > allowed) {
           r.ok = false;
           r.problems.push_back(std::string("block ") + B + " is declared absent by ADR/IGN but dF" +
                                std::to_string(i + 1) + "/d" + var<B>() + std::to_string(j + 1) + " = " +

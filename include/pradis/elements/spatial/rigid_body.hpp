@@ -103,6 +103,17 @@ struct rigid_body_t {
   /// (core/element.hpp, HasBodyFixedFlows).
   bool body_fixed_flows() const noexcept { return p.cx == 0 && p.cy == 0 && p.cz == 0; }
 
+  /// The local Jacobian entries that can be nonzero (core/element.hpp,
+  /// HasJacobianStructure): none in the row of q4 (the node's norm equation is the
+  /// model's); with the centre of mass on P the translation decouples, F = m x''
+  /// (rows 1-3: the diagonal of M) and N does not depend on x, y, z (rows 4-6:
+  /// the columns of q1..q4); with an offset every other entry.
+  bool jacobian_entry(int r, int c) const noexcept {
+    if (r == 6) return false;
+    if (!body_fixed_flows()) return true;
+    return r < 3 ? c == r : c >= 3;
+  }
+
   /// NEWINT: m >= 0, J symmetric positive definite, finite offset (code 100).
   void new_integration(element_context& ctx) const {
     if (!(p.m >= 0) || !std::isfinite(p.m)) ctx.invalid_parameter("mass m = " + to_text(p.m) + " must be finite and >= 0");
