@@ -527,8 +527,8 @@ TEST_SUITE("linalg") {
     }
     md.factorize(m.values);
     CHECK(md.statistics().factorizations == 1);
-    CHECK(md.statistics().last_factor_seconds >= 0);
-    // Solves are timed only on request (time_solves); the report says so.
+    // Solves and factorisations are timed only on request (time_solves,
+    // time_factorizations); the report says so.
     std::vector<double> b(200, 1.0);
     md.solve(b);
     CHECK(md.statistics().solves == 1);
@@ -545,6 +545,15 @@ TEST_SUITE("linalg") {
     std::ostringstream timed;
     md.statistics().print(timed);
     CHECK(timed.str().find("last solve 0.") != std::string::npos);
+    // Factorisations likewise (time_factorizations).
+    CHECK(md.statistics().last_factor_seconds == 0);
+    CHECK(untimed.str().find("last factorisation not timed") != std::string::npos);
+    md.time_factorizations = true;
+    for (int k = 0; k < 1000 && md.statistics().last_factor_seconds == 0; ++k) md.factorize(m.values);
+    CHECK(md.statistics().last_factor_seconds > 0);
+    std::ostringstream timed_factor;
+    md.statistics().print(timed_factor);
+    CHECK(timed_factor.str().find("last factorisation 0.") != std::string::npos);
   }
 
   TEST_CASE("an empty 0x0 matrix analyses, factorises and solves trivially") {

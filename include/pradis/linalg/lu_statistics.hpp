@@ -84,7 +84,8 @@ struct lu_statistics {
   double order_seconds = 0;
   /// Part of analyze_seconds spent in the symbolic factorisation (etree, fill, maps).
   double symbolic_seconds = 0;
-  /// Wall time of the last successful factorize(), in seconds.
+  /// Wall time of the last successful factorize(), in seconds; measured only with
+  /// sparse_lu::time_factorizations (0 otherwise).
   double last_factor_seconds = 0;
   /// Wall time of the last successful solve() (including its residual check), in
   /// seconds; measured only with sparse_lu::time_solves (0 otherwise).
@@ -144,11 +145,15 @@ struct lu_statistics {
                   max_growth, eta, condition_estimate,
                   condition_estimate > 0 ? (ill_conditioned() ? " (near 1/eps)" : "") : " (not estimated)");
     os << buf;
-    std::snprintf(buf, sizeof buf,
-                  "  time [s]: ordering %.6f, symbolic %.6f, last factorisation %.6f (%.1f Mflop/s), ",
-                  order_seconds, symbolic_seconds, last_factor_seconds,
-                  last_factor_seconds > 0 ? flops / last_factor_seconds * 1e-6 : 0.0);
+    std::snprintf(buf, sizeof buf, "  time [s]: ordering %.6f, symbolic %.6f, ", order_seconds, symbolic_seconds);
     os << buf;
+    if (last_factor_seconds > 0) {
+      std::snprintf(buf, sizeof buf, "last factorisation %.6f (%.1f Mflop/s), ", last_factor_seconds,
+                    flops / last_factor_seconds * 1e-6);
+      os << buf;
+    } else {
+      os << "last factorisation not timed (sparse_lu::time_factorizations), ";
+    }
     if (last_solve_seconds > 0) {
       std::snprintf(buf, sizeof buf, "last solve %.6f\n", last_solve_seconds);
       os << buf;

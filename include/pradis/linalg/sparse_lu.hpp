@@ -110,6 +110,10 @@ class sparse_lu {
   /// Newton iteration a solve takes well under a microsecond, and the clock reads
   /// cost a tenth of it.
   bool time_solves = false;
+  /// When true, every factorize() reads the clock twice to fill
+  /// statistics().last_factor_seconds. Off by default for the same reason: a
+  /// factorisation of a Newton matrix of a few DOFs takes about a microsecond.
+  bool time_factorizations = false;
   /// Condition estimate from which lu_statistics::ill_conditioned() holds: 1e-3 / eps (about
   /// 4.5e12), i.e. "near 1/eps": fewer than about 3 significant digits are guaranteed.
   double condition_warning_level = 1e-3 / std::numeric_limits<double>::epsilon();
@@ -215,7 +219,7 @@ class sparse_lu {
     if (!analyzed_) throw std::logic_error("sparse_lu::factorize called before analyze");
     if (values.size() != a_val_.size())
       throw std::invalid_argument("sparse_lu::factorize: values.size() does not match the analysed pattern");
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = time_factorizations ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
     factorized_ = false;
     const int n = stats_.n;
     detail::equilibrate(pattern_, values, equilibrate, rs_.data(), cs_.data(), a_val_.data(), row_scale_.data(),
@@ -263,7 +267,8 @@ class sparse_lu {
     }
     if (estimate_condition_on_factorize) estimate_condition();
     ++stats_.factorizations;
-    stats_.last_factor_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (time_factorizations)
+      stats_.last_factor_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
   /// Solves A x = b in place (b in original numbering in, x out): y = D_r b, the equilibrated

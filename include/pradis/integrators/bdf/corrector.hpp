@@ -225,7 +225,8 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
           oldnrm = delnrm;
           if (delnrm <= 1e-4 * eps) converged = true;
         } else {
-          const double measured = std::pow(delnrm / oldnrm, 1.0 / m);
+          const double ratio = delnrm / oldnrm;  // the rate over m iterations (no pow for m = 1)
+          const double measured = m == 1 ? ratio : std::pow(ratio, 1.0 / m);
           if (!(measured <= nw.max_rate)) break;
           mem.ss = kept_rate_ss(measured, mem.ss);
         }

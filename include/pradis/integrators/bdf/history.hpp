@@ -280,11 +280,13 @@ class history {
     }
     // h_new / h from the error estimate: doubled if it allows 2, kept if in
     // (1, 2), else reduced to h * clamp(rr, 1/2, 0.9).
-    const double rr = std::pow(2 * err_new + 1e-4, -1.0 / (k_ + 1));
-    if (rr >= 2)
+    // rr = x^(-1/(k+1)), x = 2 err + 1e-4: rr >= 2 when x <= 2^-(k+1), rr <= 1 when
+    // x >= 1 (the pow only then, for the reduction).
+    const double x = 2 * err_new + 1e-4;
+    if (x <= std::ldexp(1.0, -(k_ + 1)))
       h_ = std::min(2 * h_, hmax);
-    else if (rr <= 1)
-      h_ *= std::clamp(rr, 0.5, 0.9);
+    else if (x >= 1)
+      h_ *= std::clamp(std::pow(x, -1.0 / (k_ + 1)), 0.5, 0.9);
     h_ = std::min(h_, hmax);
   }
 
