@@ -36,8 +36,14 @@ namespace pradis::bdf_detail {
 
 /// Weighted root-mean-square norm sqrt(sum (x_i w_i)^2 / N) (IDA's WRMS norm).
 inline double wrms(const Eigen::VectorXd& x, const Eigen::VectorXd& w) {
-  if (x.size() == 0) return 0;
-  return std::sqrt(x.cwiseProduct(w).squaredNorm() / static_cast<double>(x.size()));
+  const Eigen::Index n = x.size();
+  if (n == 0) return 0;
+  double s = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double t = x[i] * w[i];
+    s += t * t;
+  }
+  return std::sqrt(s / static_cast<double>(n));
 }
 
 /// The local error estimates of a converged step (IDA's IDATestError).
@@ -119,11 +125,21 @@ class history {
 
   /// The predictor y_p and y'_p of the step (after set_coefficients()).
   void predict(Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
-    y = phi_.col(0);
-    yp.setZero(phi_.rows());
-    for (int j = 1; j <= k_; ++j) {
-      y += phi_.col(j);
-      yp += gamma_[j] * phi_.col(j);
+    // Row by row, the sums in registers (the same order as y = phi_0 + phi_1 + ...).
+    const Eigen::Index n = phi_.rows();
+    y.resize(n);
+    yp.resize(n);
+    const double* const p0 = phi_.data();
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double* q = p0 + i;
+      double a = *q, b = 0;
+      for (int j = 1; j <= k_; ++j) {
+        q += n;
+        a += *q;
+        b += gamma_[static_cast<std::size_t>(j)] * *q;
+      }
+      y[i] = a;
+      yp[i] = b;
     }
   }
 
