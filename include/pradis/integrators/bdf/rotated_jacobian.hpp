@@ -129,13 +129,18 @@ class rotated_jacobian {
   }
   static void apply(const entry& e, const global_state& s, std::span<double> x) {
     const spatial::quaternion q = get(s.u, e);
-    const spatial::mat34 a = e.body ? spatial::g_matrix(q) : spatial::e_matrix(q);
-    spatial::quaternion v;
-    for (int j = 0; j < 4; ++j) v(j) = at(x, e, j);
-    // S^-1 v = (A(q)^T (A(q0) v) + q (q0 . v)) / s0, without forming the 4 x 4 matrix.
-    const spatial::vec3 w = e.a0 * v;
-    const spatial::quaternion r = (a.transpose() * w + q * e.q0.dot(v)) * e.inv_s0;
-    for (int j = 0; j < 4; ++j) at(x, e, j) = r(j);
+    double v[4];
+    for (int j = 0; j < 4; ++j) v[j] = at(x, e, j);
+    // S^-1 v = (A(q)^T (A(q0) v) + q (q0 . v)) / s0, without forming the 4 x 4 matrix,
+    // in scalar arithmetic: w = A(q0) v, and with A = G (body frame) or E,
+    // A(q)^T w = (q4 w +- q_v x w, -q_v . w).
+    double w[3];
+    for (int r = 0; r < 3; ++r) w[r] = e.a0(r, 0) * v[0] + e.a0(r, 1) * v[1] + e.a0(r, 2) * v[2] + e.a0(r, 3) * v[3];
+    const double qv = e.q0(0) * v[0] + e.q0(1) * v[1] + e.q0(2) * v[2] + e.q0(3) * v[3];
+    const double sg = e.body ? 1.0 : -1.0;
+    const double c[3] = {q(1) * w[2] - q(2) * w[1], q(2) * w[0] - q(0) * w[2], q(0) * w[1] - q(1) * w[0]};
+    for (int k = 0; k < 3; ++k) at(x, e, k) = (q(3) * w[k] + sg * c[k] + q(k) * qv) * e.inv_s0;
+    at(x, e, 3) = (q(3) * qv - (q(0) * w[0] + q(1) * w[1] + q(2) * w[2])) * e.inv_s0;
   }
   std::vector<entry> nodes_;
 };
