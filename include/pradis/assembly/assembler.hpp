@@ -146,6 +146,8 @@ class assembler<model<Es...>> {
         },
         maps_);
     values_.assign(static_cast<std::size_t>(pattern_.nnz()), 0.0);
+    if (keep_blocks_) resize_blocks();
+    ++blocks_version_;
     residual_.setZero(nd);
     abs_sum_.setZero(nd);
     partial_rows_ = false;
@@ -195,7 +197,12 @@ class assembler<model<Es...>> {
   void evaluate(model_type& m, const global_state& s, const jacobian_coefficients& c, const call_info& info) {
     residual_.setZero();
     abs_sum_.setZero();
-    if (info.want_jacobian || info.jacobian_types) std::fill(values_.begin(), values_.end(), 0.0);
+    if (info.want_jacobian || info.jacobian_types) {
+      std::fill(values_.begin(), values_.end(), 0.0);
+      ++blocks_version_;  // the blocks kept (keep_blocks) are those of this evaluation, or none
+      if (keep_blocks_ && info.want_jacobian)
+        for (auto* b : {&k_values_, &c_values_, &m_values_}) std::fill(b->begin(), b->end(), 0.0);
+    }
     element_context ctx;
     ctx.set_diagnostics(info.log);
     ctx.time = info.time;
@@ -234,6 +241,29 @@ class assembler<model<Es...>> {
   const linalg::sparsity_pattern& pattern() const noexcept { return pattern_; }
   /// Assembled Newton-matrix values in the pattern's CSR order.
   std::span<const double> values() const noexcept { return values_; }
+
+  /// Keeps the element blocks K, C and M of every full Jacobian evaluation apart
+  /// (in the pattern's order), so that reform() can make J for other
+  /// coefficients without evaluating the elements again. Off by default (three
+  /// more sums per assembled entry).
+  void keep_blocks(bool on) {
+    keep_blocks_ = on;
+    if (on) resize_blocks();
+    ++blocks_version_;
+  }
+  /// Whether keep_blocks is on.
+  bool keeps_blocks() const noexcept { return keep_blocks_; }
+  /// Changes with every evaluation that assembles a Jacobian (and with build()):
+  /// the blocks kept are those of the evaluation that set the current value,
+  /// if it was a full one with keep_blocks on.
+  std::size_t blocks_version() const noexcept { return blocks_version_; }
+  /// values() := cu K + cv C + ca M from the blocks kept (keep_blocks): the Newton
+  /// matrix of the last full Jacobian evaluation's state for other coefficients.
+  /// Never allocates.
+  void reform(const jacobian_coefficients& c) {
+    for (std::size_t i = 0; i < values_.size(); ++i)
+      values_[i] = c.cu * k_values_[i] + c.cv * c_values_[i] + c.ca * m_values_[i];
+  }
   /// Sum of flows per DOF (all DOFs).
   const Eigen::VectorXd& residual() const noexcept { return residual_; }
   /// Sum of |flows| per DOF (all DOFs).
@@ -316,14 +346,21 @@ class assembler<model<Es...>> {
       const scatter_entry* const b = map.entries.data() + map.first[i];
       const scatter_entry* const e = map.entries.data() + map.first[i + 1];
       double check = 0;
+      const bool keep = keep_blocks_ && info.want_jacobian;
       for (const scatter_entry* p = b; p != e; ++p) {
         const auto j = static_cast<Eigen::Index>(p->local);
+        const auto slot = static_cast<std::size_t>(p->slot);
         double x = 0;
         if constexpr (tr::has_k) x += c.cu * out.K.data()[j];
         if constexpr (tr::has_c) x += c.cv * out.C.data()[j];
         if constexpr (tr::has_m) x += c.ca * out.M.data()[j];
         check += x * 0.0;
-        values_[static_cast<std::size_t>(p->slot)] += x;
+        values_[slot] += x;
+        if (keep) {
+          if constexpr (tr::has_k) k_values_[slot] += out.K.data()[j];
+          if constexpr (tr::has_c) c_values_[slot] += out.C.data()[j];
+          if constexpr (tr::has_m) m_values_[slot] += out.M.data()[j];
+        }
       }
       if (check != 0.0) {  // NaN: some entry was not finite
         if constexpr (tr::has_k)
@@ -375,6 +412,10 @@ class assembler<model<Es...>> {
         const double dk = mu * (p(k) / lq - g * q(k) / (lq * lq * lq));
         const double dc = mu * q(k) / lq;
         values_[static_cast<std::size_t>(slot[k])] += c.cu * dk + c.cv * dc;
+        if (keep_blocks_) {
+          k_values_[static_cast<std::size_t>(slot[k])] += dk;
+          c_values_[static_cast<std::size_t>(slot[k])] += dc;
+        }
       }
     }
   }
@@ -385,7 +426,13 @@ class assembler<model<Es...>> {
   std::tuple<scatter_map<Es>...> maps_;
   std::tuple<scatter_map<Es>...> partial_maps_;  // maps_ on the rows of restrict_partial_rows()
   bool partial_rows_ = false;
+  void resize_blocks() {
+    for (auto* b : {&k_values_, &c_values_, &m_values_}) b->assign(values_.size(), 0.0);
+  }
   std::vector<double> values_;
+  bool keep_blocks_ = false;
+  std::vector<double> k_values_, c_values_, m_values_;  // keep_blocks: K, C, M of the last full evaluation
+  std::size_t blocks_version_ = 0;
   Eigen::VectorXd residual_, abs_sum_;
   double recommended_step_ = 0;
   std::size_t built_version_ = static_cast<std::size_t>(-1);

@@ -36,7 +36,8 @@
 /// order-raise test), and fails when the rate exceeds newton_options::max_rate or after
 /// newton_options::itr iterations. The Jacobian is refreshed when c changed by
 /// more than bdf_options::coefficient_change (default: at all) since the factorisation (a kept
-/// one has its corrections scaled by 2 / (1 + c / c_J)), when a node turned by bdf_options::turn_refresh,
+/// one has its corrections scaled by 2 / (1 + c / c_J); made at the new c from kept blocks where
+/// bdf_options::reform_jacobian applies), when a node turned by bdf_options::turn_refresh,
 /// at the start of every stage and before a failed step is redone. PRADIS's DABSU/DRLTU/DABSI/DRLTI
 /// are not used, nor is newton_options::method (always modified Newton).
 
@@ -339,6 +340,11 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
         stab_);
     constraint_types_ = bdf_detail::constraint_types(m_, index3_);
     asm_.restrict_partial_rows(stab_.rows);  // G is read on the constraint rows alone
+    // J again from the kept element blocks when only c moved (bdf_options::reform_jacobian):
+    // where every free rotational node is turned in its body frame (or there is none).
+    const auto free_nodes = static_cast<int>(bdf_detail::free_rotation_nodes(m_.rotation_nodes(), asm_).size());
+    asm_.keep_blocks(bopt_.reform_jacobian && stab_.rows.empty() && rates_.empty() &&
+                     turned_.body_frame_nodes() == free_nodes);
     double h = opt_.smin;
     set_weights(opt_.error_control ? 0.001 * (opt_.end - t_) : h);
     if (opt_.error_control) {

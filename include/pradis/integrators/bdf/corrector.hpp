@@ -56,6 +56,7 @@ struct newton_memory {
   bool valid = false;  ///< a factorisation is kept
   double c_jac = 0;    ///< the c it was made with
   double ss = 20;      ///< rate / (1 - rate) for the first correction of a step
+  std::size_t blocks_version = 0;  ///< the assembler's blocks_version() after the kept matrix's evaluation
 };
 
 /// The fastest the kept convergence rate may fall per measured correction
@@ -161,11 +162,24 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
     const double lo = (1 - window) / (1 + window), r = c / mem.c_jac;
     refresh = !(r >= lo && r <= 1 / lo);
   }
+
   if (c != c_last) mem.ss = 100;
   // A refresh because a node turned in the global frame keeps the rate estimate:
   // the fresher matrix converges no slower than the one it replaces.
   bool keep_rate = false;
   if (!refresh && rj && rj->turned_beyond(s, turn_refresh)) refresh = keep_rate = true;
+  // Only c moved and the element blocks of the kept matrix are still in the
+  // assembler (keep_blocks, bdf_options::reform_jacobian): J = K / c + C + c M is
+  // made again from them at the new c and factorised, without evaluating the
+  // elements' Jacobians; the state it belongs to (and the turned matrix's
+  // reference) stays the kept one. Not with stabilised constraints or the rate
+  // form (their rows and columns are built with the evaluation).
+  bool reform = false;
+  if (refresh && !keep_rate && mem.valid && !st && !rf && as.keeps_blocks() &&
+      mem.blocks_version == as.blocks_version()) {
+    reform = true;
+    refresh = false;
+  }
   dy.resize(2 * ne);
   failure.reset();
   for (;;) {
@@ -180,16 +194,18 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
       for (int m = 0; m < nw.itr && !converged; ++m) {
         const bool fresh_g = st && m == 0;  // G at the predictor
         evaluate(jc, refresh, fresh_g && !refresh, m);
-        if (refresh) {
+        if (refresh) mem.blocks_version = as.blocks_version();
+        if (reform) as.reform(jc);
+        if (refresh || reform) {
           mem.valid = false;
           solver.factorize(as.values());
           ++stats.factorizations;
           mem.valid = true;
-          if (rj) rj->set_reference(s);
+          if (rj && refresh) rj->set_reference(s);
           mem.c_jac = c;
           if (!keep_rate) mem.ss = 20;
           keep_rate = false;
-          refresh = false;
+          refresh = reform = false;
         }
         for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
         if (st) stabilised_rows(as, s, *st, fresh_g, c, mem.c_jac, rhs);

@@ -98,6 +98,16 @@ struct bdf_options {
   /// steps (docs/bdf.md, "Newton"). Newton's rate estimate is kept across such
   /// a refresh. A number >= 0; at or above pi never (the angle is at most pi).
   double turn_refresh = 1.0;
+  /// When c changed but the kept Newton matrix is otherwise still good (no turn
+  /// beyond turn_refresh, no failure), it is made again at the new c from the
+  /// element blocks K, C, M of its evaluation, J = K / c + C + c M, and
+  /// factorised, without evaluating the elements' Jacobians (the assembler
+  /// keeps the blocks, assembler::keep_blocks). Only where the kept matrix's age
+  /// in the state is made up for: a model without rotational nodes, or whose
+  /// every free rotational node is turned in its body frame (rotated_jacobian,
+  /// body_frame); not with stabilised index-3 constraints or the rate form.
+  /// docs/bdf.md, "Newton". false: the elements are evaluated at every refresh.
+  bool reform_jacobian = true;
 
   /// Equal options (the language keeps a BDF driver across stages whose options are equal).
   bool operator==(const bdf_options&) const = default;
