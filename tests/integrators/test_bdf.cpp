@@ -227,6 +227,39 @@ TEST_SUITE("integrators/bdf") {
     CHECK(last < 1e-3 * first);
   }
 
+  TEST_CASE("reform_jacobian on the quadratic-drag motion: J at a new c from the kept blocks, the same accuracy") {
+    // m x'' + c |x'| x' = 0 (exact solution above): without rotational nodes or
+    // constraints the driver keeps the element blocks and, when only c moved,
+    // forms K / c + C + c M from them instead of evaluating the elements again.
+    // Measured: 77 steps, 93 iterations, 28 factorisations, 3 Jacobian evaluations,
+    // error 1.8e-6; without: 77, 91, 25, 26, 3.7e-6.
+    const double mass = 2.0, c = 0.5, v0 = 3.0, end = 5.0, tol = 1e-6;
+    auto run = [&](bool reform) {
+      model<point_mass, quadratic_drag, initial_velocity> m;
+      const dof x = m.add_dof("x");
+      m.add<point_mass>("m", {mass}, x);
+      m.add<quadratic_drag>("drag", {c}, x);
+      m.add<initial_velocity>("v0", {v0}, x);
+      bdf_simulation sim(m, bdf_options{.reform_jacobian = reform});
+      const run_statistics st = sim.run(controlled(end, tol, 1.0));
+      const double g = 1 + c * v0 * end / mass;
+      const double err = std::max(std::abs(sim.u(x) - mass / c * std::log(g)) / (mass / c * std::log(g)),
+                                  std::abs(sim.v(x) - v0 / g) / (v0 / g));
+      MESSAGE("reform " << reform << ": " << st.steps << " steps, " << st.newton_iterations << " iterations, "
+                        << st.factorizations << " factorisations, " << st.jacobian_evaluations
+                        << " Jacobian evaluations, error " << err);
+      CHECK(sim.get_assembler().keeps_blocks() == reform);
+      return std::pair{st, err};
+    };
+    const auto [on, on_err] = run(true);
+    const auto [off, off_err] = run(false);
+    CHECK(on_err < 20 * tol);
+    CHECK(off_err < 20 * tol);
+    CHECK(on.jacobian_evaluations < on.factorizations);
+    CHECK(off.jacobian_evaluations >= off.factorizations);
+    CHECK(on.steps <= off.steps + off.steps / 10);
+  }
+
   TEST_CASE("outputs at OUT and a second stage continue the exact oscillator") {
     oscillator osc;
     auto& m = osc.m;

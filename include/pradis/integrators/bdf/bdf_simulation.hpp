@@ -340,11 +340,11 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
         stab_);
     constraint_types_ = bdf_detail::constraint_types(m_, index3_);
     asm_.restrict_partial_rows(stab_.rows);  // G is read on the constraint rows alone
-    // J again from the kept element blocks when only c moved (bdf_options::reform_jacobian):
-    // where every free rotational node is turned in its body frame (or there is none).
+    // J again from the kept element blocks when only c moved (bdf_options::reform_jacobian): without
+    // index-3 constraints, where every free rotational node is turned in its body frame (or there is none).
     const auto free_nodes = static_cast<int>(bdf_detail::free_rotation_nodes(m_.rotation_nodes(), asm_).size());
-    asm_.keep_blocks(bopt_.reform_jacobian && stab_.rows.empty() && rates_.empty() &&
-                     turned_.body_frame_nodes() == free_nodes);
+    asm_.keep_blocks(bopt_.reform_jacobian && std::find(index3_.begin(), index3_.end(), char{1}) == index3_.end() &&
+                     rates_.empty() && turned_.body_frame_nodes() == free_nodes);
     double h = opt_.smin;
     set_weights(opt_.error_control ? 0.001 * (opt_.end - t_) : h);
     if (opt_.error_control) {

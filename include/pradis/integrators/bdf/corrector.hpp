@@ -162,7 +162,6 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
     const double lo = (1 - window) / (1 + window), r = c / mem.c_jac;
     refresh = !(r >= lo && r <= 1 / lo);
   }
-
   if (c != c_last) mem.ss = 100;
   // A refresh because a node turned in the global frame keeps the rate estimate:
   // the fresher matrix converges no slower than the one it replaces.
@@ -172,8 +171,9 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
   // assembler (keep_blocks, bdf_options::reform_jacobian): J = K / c + C + c M is
   // made again from them at the new c and factorised, without evaluating the
   // elements' Jacobians; the state it belongs to (and the turned matrix's
-  // reference) stays the kept one. Not with stabilised constraints or the rate
-  // form (their rows and columns are built with the evaluation).
+  // reference) stays the kept one. The driver turns keep_blocks on where this
+  // fits (bdf_simulation.hpp); never with stabilised constraints or the rate form
+  // (their rows and columns are built with the evaluation).
   bool reform = false;
   if (refresh && !keep_rate && mem.valid && !st && !rf && as.keeps_blocks() &&
       mem.blocks_version == as.blocks_version()) {

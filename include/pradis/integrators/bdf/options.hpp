@@ -105,7 +105,7 @@ struct bdf_options {
   /// keeps the blocks, assembler::keep_blocks). Only where the kept matrix's age
   /// in the state is made up for: a model without rotational nodes, or whose
   /// every free rotational node is turned in its body frame (rotated_jacobian,
-  /// body_frame); not with stabilised index-3 constraints or the rate form.
+  /// body_frame); not with index-3 constraints (in either form) or the rate form.
   /// docs/bdf.md, "Newton". false: the elements are evaluated at every refresh.
   bool reform_jacobian = true;
 
