@@ -31,6 +31,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "pradis/integrators/bdf/bdf_simulation.hpp"
 #include "pradis/spatial/node_state.hpp"
@@ -62,6 +63,27 @@ run_options top_controlled(double tol) {
   o.drltx = tol;
   o.dabsx = tol;
   return o;
+}
+
+/// One period of the HLW free body under error control at DRLTX = DABSX = 1e-6 with
+/// the BDF options `bo`: the statistics and the relative error of omega_b(T) against
+/// the exact omega_b(T) = omega_b(0).
+std::pair<run_statistics, double> hlw_controlled_run(const bdf_options& bo) {
+  namespace rigid = wp::rigid;
+  const spatial::vec3 w0 = rigid::hlw_omega0();
+  rigid::freebody_model b;
+  bdf_simulation sim(b.m, bo);
+  run_options o;
+  o.end = rigid::hlw_period;
+  o.smax = 0.5;
+  o.smin = 1e-12;
+  o.error_control = true;
+  o.drltx = 1e-6;
+  o.dabsx = 1e-6;
+  const run_statistics st = sim.run(o);
+  const Eigen::Matrix3d r = spatial::node_rotation(sim, b.r);
+  const double err = (r.transpose() * spatial::node_angular_velocity(sim, b.r) - w0).norm() / w0.norm();
+  return std::pair{st, err};
 }
 }  // namespace
 
@@ -331,23 +353,7 @@ TEST_SUITE("integrators/bdf") {
     // (omega_b(T) = omega_b(0) exactly) under error control at DRLTX = 1e-6: the node has
     // BODY3 and ROT0 only, so BDF turns its kept matrix in the body frame (the default);
     // in the global frame it does not fit the body's changing axis of rotation.
-    namespace rigid = wp::rigid;
-    const spatial::vec3 w0 = rigid::hlw_omega0();
-    auto run = [&](bool body_frame) {
-      rigid::freebody_model b;
-      bdf_simulation sim(b.m, bdf_options{.body_frame = body_frame});
-      run_options o;
-      o.end = rigid::hlw_period;
-      o.smax = 0.5;
-      o.smin = 1e-12;
-      o.error_control = true;
-      o.drltx = 1e-6;
-      o.dabsx = 1e-6;
-      const run_statistics st = sim.run(o);
-      const Eigen::Matrix3d r = spatial::node_rotation(sim, b.r);
-      const double err = (r.transpose() * spatial::node_angular_velocity(sim, b.r) - w0).norm() / w0.norm();
-      return std::pair{st, err};
-    };
+    auto run = [](bool body_frame) { return hlw_controlled_run(bdf_options{.body_frame = body_frame}); };
     const auto [global, global_err] = run(false);
     const auto [body, body_err] = run(true);
     MESSAGE("global frame: " << global.steps << " steps, " << global.newton_iterations << " Newton iterations, "
@@ -371,22 +377,8 @@ TEST_SUITE("integrators/bdf") {
     // against 22; omega_b(T) off by 4.0e-5 against 3.5e-5). In the global frame (or
     // with a node not turned in its body frame) the state's part of the kept
     // matrix's age is not made up for, and the driver evaluates as before.
-    namespace rigid = wp::rigid;
-    const spatial::vec3 w0 = rigid::hlw_omega0();
-    auto run = [&](bool reform, bool body_frame) {
-      rigid::freebody_model b;
-      bdf_simulation sim(b.m, bdf_options{.body_frame = body_frame, .reform_jacobian = reform});
-      run_options o;
-      o.end = rigid::hlw_period;
-      o.smax = 0.5;
-      o.smin = 1e-12;
-      o.error_control = true;
-      o.drltx = 1e-6;
-      o.dabsx = 1e-6;
-      const run_statistics st = sim.run(o);
-      const Eigen::Matrix3d r = spatial::node_rotation(sim, b.r);
-      const double err = (r.transpose() * spatial::node_angular_velocity(sim, b.r) - w0).norm() / w0.norm();
-      return std::pair{st, err};
+    auto run = [](bool reform, bool body_frame) {
+      return hlw_controlled_run(bdf_options{.body_frame = body_frame, .reform_jacobian = reform});
     };
     const auto [kept, kept_err] = run(true, true);
     const auto [eval, eval_err] = run(false, true);

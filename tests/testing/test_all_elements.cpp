@@ -94,18 +94,25 @@ void check_all(type_list<Es...>) {
   (check_one_element<Es>(), ...);
 }
 
+// The flows and dF/du of the LINKD `link` at in.u, for the test elements derived from it.
+template <class E>
+void linkd_flows(const elements::planar_link& link, const local_input<E>& in, local_output<E>& out,
+                 element_context& ctx) {
+  local_input<elements::planar_link> i2;
+  i2.u = in.u;
+  local_output<elements::planar_link> o2;
+  link.evaluate(i2, o2, ctx);
+  out.f = o2.f;
+  out.K = o2.K;
+}
+
 // A deliberately wrong LINKD: the manual's dF1/dX2 with the wrong sign.
 struct wrong_link : elements::planar_link {
   static constexpr pradis::passport passport{.name = "WRONG", .ext = 4, .par = 5, .wrk = 3, .adr = 1, .ign = 23};
   using elements::planar_link::planar_link;
   static wrong_link from_parameters(std::span<const double> v) { return wrong_link({v[0], v[1], v[2], v[3], v[4]}); }
   void evaluate(const local_input<wrong_link>& in, local_output<wrong_link>& out, element_context& ctx) const {
-    local_input<elements::planar_link> i2;
-    i2.u = in.u;
-    local_output<elements::planar_link> o2;
-    elements::planar_link::evaluate(i2, o2, ctx);
-    out.f = o2.f;
-    out.K = o2.K;
+    linkd_flows(*this, in, out, ctx);
     out.K(0, 1) = -out.K(0, 1);
   }
 };
@@ -136,12 +143,7 @@ struct wrong_structure_link : elements::planar_link {
   }
   void evaluate(const local_input<wrong_structure_link>& in, local_output<wrong_structure_link>& out,
                 element_context& ctx) const {
-    local_input<elements::planar_link> i2;
-    i2.u = in.u;
-    local_output<elements::planar_link> o2;
-    elements::planar_link::evaluate(i2, o2, ctx);
-    out.f = o2.f;
-    out.K = o2.K;
+    linkd_flows(*this, in, out, ctx);
   }
   bool jacobian_entry(int r, int c) const { return !(r == 0 && c == 1); }
 };

@@ -83,8 +83,8 @@ class action_checker : public model_builder {
     if (k == "BETA" || k == "GAMMA") return "NEWMARK";
     if (k == "ALPHA") return "HHT";
     if (k == "RHOINF") return "GALPHA";
-    if (k == "MAXORD" || k == "LQBAND" || k == "INDEX2" || k == "TURN" || k == "TURNMAX" ||
-        k == "RATES")
+    if (k == "MAXORD" || k == "LQBAND" || k == "INDEX2" || k == "TURN" || k == "TURNMAX" || k == "RATES" ||
+        k == "REFORM")
       return "BDF";
     return "";
   }
@@ -106,7 +106,7 @@ class action_checker : public model_builder {
                                                 "DRLTU", "DABSI", "DRLTI", "ITR",     "SECOND",  "BETA",
                                                 "GAMMA", "ALPHA", "RHOINF", "DABSX",  "DRLTX",   "CONTROL",
                                                 "PREDICT", "SAVE",  "OPTIM",   "MAXORD", "LQBAND",  "INDEX2",
-                                                "TURN",  "TURNMAX", "RATES"};
+                                                "TURN",  "TURNMAX", "RATES", "REFORM"};
     for (const auto& g : c.args)
       for (const auto& it : g) {
         if (it.what != ast::item::kind::keyed)
@@ -200,6 +200,8 @@ class action_checker : public model_builder {
                              "which the kept Newton matrix is refreshed; >= pi: never)");
         } else if (k == "RATES") {
           s.bdf_opt.rotation_rates = whole(v, "RATES", 0, 1) == 1;
+        } else if (k == "REFORM") {
+          s.bdf_opt.reform_jacobian = whole(v, "REFORM", 0, 1) == 1;
         } else if (k == "OPTIM")
           s.optim = whole(v, "OPTIM", linalg::optim_min_level, linalg::optim_max_level);
         else if (k == "BETA")

@@ -46,6 +46,8 @@ inline const std::vector<program_info>& integration_programs() {
        "TURNMAX - the kept Newton matrix is refreshed when a node turned in the global frame has turned by more "
        "than TURNMAX [rad] since its factorisation; >= pi: never (1)\n"
        "RATES - rotational nodes: 1 body rates in the BDF history (more accurate with fixed steps), 0 q' (0)\n"
+       "REFORM - 1: when only c changed, the kept Newton matrix is formed again from its element blocks where the "
+       "driver allows it; 0: the elements are evaluated at every refresh (1)\n"
        "BDF always controls its error with DRLTX and DABSX (and CONTROL); "
        "DABSU, DRLTU, DABSI, DRLTI, SECOND and PREDICT do not apply\n"},
   };
