@@ -87,6 +87,9 @@ struct spatial_force_t {
     p.recommend(ctx);
     if (out.want_jacobian) out.K.setZero();
   }
+  /// The local Jacobian entries that can be nonzero (core/element.hpp,
+  /// HasJacobianStructure): none, the force depends on time alone.
+  bool jacobian_entry(int, int) const noexcept { return false; }
 };
 
 template <class = void>
@@ -122,6 +125,9 @@ struct spatial_torque_t {
     p.recommend(ctx);
     if (out.want_jacobian) out.K.setZero();
   }
+  /// The local Jacobian entries that can be nonzero (core/element.hpp,
+  /// HasJacobianStructure): none, the moment depends on time alone.
+  bool jacobian_entry(int, int) const noexcept { return false; }
 };
 
 template <class = void>
@@ -254,6 +260,10 @@ struct offset_force_t {
     out.K.setZero();
     out.K.block<3, 4>(3, 3) = -(skew(f) * skew(rho)) * ((2.0 / s) * e_matrix(q));
   }
+  /// The local Jacobian entries that can be nonzero (core/element.hpp,
+  /// HasJacobianStructure): the moment rows q1..q3 in the columns q1..q4; the force
+  /// depends on time alone, and q4's row has no flow.
+  bool jacobian_entry(int r, int c) const noexcept { return r >= 3 && r < 6 && c >= 3; }
   /// States the checks may use: the quaternion norm is not near zero.
   bool admissible(const local_input<offset_force>& in) const { return in.u.segment<4>(3).norm() > 0.2; }
 };
