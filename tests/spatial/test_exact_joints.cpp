@@ -88,22 +88,6 @@ TEST_SUITE("spatial/exact joints") {
     CHECK(cm_check < 1e-15);
     // The joint carries the weight (plus the small centripetal part at 3 degrees).
     CHECK(force_z == doctest::Approx(mass * g).epsilon(2e-3));
-    // The Newton matrix holds only the entries the elements declare (jacobian_entry,
-    // checked by finite differences in tests/testing/test_all_elements.cpp): SPH3X's
-    // forces are the multipliers and its moments depend on the body's q alone, BODY3
-    // centred on its node has F = m x'', F3 none. Unknowns: x, y, z, q1..q4, the
-    // ground node's q4 and the three multipliers; entries: x rows 3 x (diagonal +
-    // 3 multipliers), q1..q3 rows 3 x (q1..q4 + 3 multipliers), q4's norm row 4, the
-    // ground q4 1, the constraint rows 3 x (x, y, z, q1..q4, ground q4, diagonal).
-    const auto& as = sim.get_assembler();
-    CHECK(as.equations() == 11);
-    CHECK(as.pattern().nnz() == 12 + 21 + 4 + 1 + 27);
-    for (const dof xi : x)
-      for (const dof qi : {r.q1, r.q2, r.q3}) {
-        const int ex = as.equation_of(xi.index), eq = as.equation_of(qi.index);
-        CHECK(as.pattern().find(ex, eq) < 0);
-        CHECK(as.pattern().find(eq, ex) < 0);
-      }
   }
 
   // The heavy top on SPH3X (Goldstein section 5.7, as in test_joints.cpp): released

@@ -33,27 +33,6 @@ namespace pradis::elements::detail {
 /// The local index of the first multiplier of an exact spatial joint.
 inline constexpr int first_multiplier = 14;
 
-/// Whether the local Jacobian entry (r, c) of an exact spatial joint can be nonzero
-/// (its jacobian_entry, core/element.hpp HasJacobianStructure), from the kinds of
-/// rows it uses. Point rows: the moments on each body in its own q1..q4 (geometric
-/// stiffness), the rows' gradients in x and q of both bodies, the multiplier columns.
-/// Line rows add the forces in q_a (the normal N = R_a n turns with body a), body
-/// a's moments in x_a, x_b and q_b, body b's in q_a; perpendicular rows add the
-/// moments of each body in the other's q. The hidden q4 rows have no flow (the norm
-/// equation is the model's), and no row depends on the multipliers but through the
-/// columns of the flows (the constraint rows do not).
-constexpr bool exact_joint_entry(bool line_rows, bool perpendicular_rows, int r, int c) {
-  const auto is_x = [](int i) { return i < 3 || (i >= 6 && i < 9); };
-  const auto is_qa = [](int i) { return (i >= 3 && i < 6) || i == 12; };
-  if (r == 12 || r == 13) return false;
-  if (r >= first_multiplier) return c < first_multiplier;
-  if (c >= first_multiplier) return true;
-  if (is_x(r)) return line_rows && is_qa(c);
-  const bool row_a = r < 6;  // a moment row: of body a (3..5) or of body b (9..11)
-  if (is_x(c)) return line_rows && row_a;
-  return is_qa(c) == row_a || line_rows || perpendicular_rows;
-}
-
 /// Zeroes the flows before the rows are added. The Jacobian blocks, when wanted,
 /// arrive zeroed (local_output's contract), so the rows only add to them.
 template <class Out>

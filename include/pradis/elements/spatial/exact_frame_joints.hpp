@@ -84,8 +84,6 @@ struct prismatic_kind_t {
                  "zero, a reference vector is parallel to its axis, or a parameter is not finite; code 75 if a "
                  "quaternion norm comes near zero. The constraint rows have a zero diagonal; the joined bodies "
                  "must carry mass and inertia"};
-  /// Row kinds it uses, for its Jacobian structure (exact_joint_entry).
-  static constexpr bool line_rows = true, perpendicular_rows = true;
   static constexpr int force_work = 1, moment_work = 6;
   using parameters = two_frame_parameters;
   parameters p;
@@ -138,8 +136,6 @@ struct fixed_kind_t {
                  "zero, a reference vector is parallel to its axis, or a parameter is not finite; code 75 if a "
                  "quaternion norm comes near zero. The constraint rows have a zero diagonal; the joined bodies "
                  "must carry mass and inertia"};
-  /// Row kinds it uses, for its Jacobian structure (exact_joint_entry).
-  static constexpr bool line_rows = false, perpendicular_rows = true;
   static constexpr int force_work = 1, moment_work = 6;
   using parameters = two_frame_parameters;
   parameters p;
@@ -184,8 +180,6 @@ struct point_on_line_kind_t {
                  "(velocity-level unknowns). code 100 if the direction is zero or a parameter is not finite; code "
                  "75 if a quaternion norm comes near zero. The constraint rows have a zero diagonal; body b must "
                  "carry mass"};
-  /// Row kinds it uses, for its Jacobian structure (exact_joint_entry).
-  static constexpr bool line_rows = true, perpendicular_rows = false;
   static constexpr int force_work = 1, moment_work = -1;
   using parameters = one_axis_parameters;
   parameters p;
@@ -236,8 +230,6 @@ struct point_on_plane_kind_t {
                  "(velocity-level unknown). code 100 if the normal is zero or a parameter is not finite; code 75 "
                  "if a quaternion norm comes near zero. The constraint row has a zero diagonal; body b must carry "
                  "mass"};
-  /// Row kinds it uses, for its Jacobian structure (exact_joint_entry).
-  static constexpr bool line_rows = true, perpendicular_rows = false;
   static constexpr int force_work = 1, moment_work = -1;
   using parameters = one_axis_parameters;
   parameters p;

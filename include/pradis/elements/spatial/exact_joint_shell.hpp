@@ -126,9 +126,7 @@ struct two_frame_parameters {
 /// - `rows(bodies, mu, out, work)`: adds its constraint rows with the multipliers
 ///   mu (local 14 on) and writes its geometric work outputs;
 /// - `force_work` / `moment_work`: the first work index of the force on body b and
-///   of the moment on b about B (-1: not reported);
-/// - `line_rows` / `perpendicular_rows`: whether its rows include line or
-///   perpendicular rows (its Jacobian structure, exact_joint_entry).
+///   of the moment on b about B (-1: not reported).
 /// The shell checks the geometry (code 100), the quaternion norms (code 75),
 /// zeroes the flows, and writes the reactions (joint_reactions_on_b).
 template <class Kind>
@@ -167,11 +165,6 @@ struct exact_joint : Kind {
   }
   /// States the checks may use: both quaternion norms are not near zero.
   bool admissible(const local_input<exact_joint>& in) const { return two_quaternions_admissible(in); }
-  /// The local Jacobian entries that can be nonzero (core/element.hpp,
-  /// HasJacobianStructure), from the kinds of rows Kind uses (exact_joint_entry).
-  bool jacobian_entry(int r, int c) const noexcept {
-    return exact_joint_entry(Kind::line_rows, Kind::perpendicular_rows, r, c);
-  }
 };
 
 }  // namespace pradis::elements::detail

@@ -63,8 +63,6 @@ struct spherical_kind_t {
                  "comes near zero. The constraint rows have a zero diagonal; the joined bodies must carry mass. "
                  "Use HHT or generalized-alpha when the joint force matters: under NEWMARK it may alternate from "
                  "step to step"};
-  /// Row kinds it uses, for its Jacobian structure (exact_joint_entry).
-  static constexpr bool line_rows = false, perpendicular_rows = false;
   static constexpr int force_work = 1, moment_work = -1;
   using parameters = point_joint_parameters;
   parameters p;
@@ -111,8 +109,6 @@ struct revolute_kind_t {
                  "parameter is not finite; code 75 if a quaternion norm comes near zero. The constraint rows have "
                  "a zero diagonal; the joined bodies must carry mass and inertia. Under NEWMARK the joint force "
                  "may alternate from step to step (HHT or generalized-alpha damp it)"};
-  /// Row kinds it uses, for its Jacobian structure (exact_joint_entry).
-  static constexpr bool line_rows = false, perpendicular_rows = true;
   static constexpr int force_work = 1, moment_work = 5;
   using parameters = two_axis_parameters;
   parameters p;
@@ -172,8 +168,6 @@ struct universal_kind_t {
                  "a quaternion norm comes near zero. The constraint rows have a zero diagonal; the joined bodies "
                  "must carry mass and inertia. As for any Cardan joint, b's spin follows a's non-uniformly when the "
                  "shafts are inclined, and the joint locks when the shafts stand at a right angle"};
-  /// Row kinds it uses, for its Jacobian structure (exact_joint_entry).
-  static constexpr bool line_rows = false, perpendicular_rows = true;
   static constexpr int force_work = 1, moment_work = 5;
   using parameters = two_axis_parameters;
   parameters p;
@@ -229,8 +223,6 @@ struct cylindrical_kind_t {
                  "axis and the axes be parallel initially; code 100 if an axis is zero or a parameter is not "
                  "finite; code 75 if a quaternion norm comes near zero. The constraint rows have a zero diagonal; "
                  "the joined bodies must carry mass and inertia"};
-  /// Row kinds it uses, for its Jacobian structure (exact_joint_entry).
-  static constexpr bool line_rows = true, perpendicular_rows = true;
   static constexpr int force_work = 1, moment_work = 5;
   using parameters = two_axis_parameters;
   parameters p;
