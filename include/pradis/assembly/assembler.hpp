@@ -20,7 +20,7 @@
 #include "pradis/core/element.hpp"
 #include "pradis/linalg/sparsity.hpp"
 #include "pradis/model/model.hpp"
-#include "pradis/spatial/quaternion.hpp"
+#include "pradis/core/node_kind.hpp"
 
 namespace pradis {
 
@@ -102,23 +102,31 @@ class assembler<model<Es...>> {
           }
       }
     });
-    // Rotational nodes: the 4 x 4 block of q1..q4 (the norm equation fills the q4 row).
-    for (const auto& node : m.rotation_nodes())
-      for (int r : node.dofs)
-        for (int c : node.dofs) {
-          const int er = eq_of_dof_[static_cast<std::size_t>(r)], ec = eq_of_dof_[static_cast<std::size_t>(c)];
-          if (er >= 0 && ec >= 0) entries.emplace_back(er, ec);
-        }
+    // Nodes (core/node_kind.hpp): the block of a node's DOFs, in which its own equation
+    // fills the rows K::rows.
+    m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+      for (const auto& node : nodes)
+        for (int r : node.dofs)
+          for (int c : node.dofs) {
+            const int er = eq_of_dof_[static_cast<std::size_t>(r)], ec = eq_of_dof_[static_cast<std::size_t>(c)];
+            if (er >= 0 && ec >= 0) entries.emplace_back(er, ec);
+          }
+    });
     pattern_ = linalg::sparsity_pattern::from_entries(ne, entries);
-    node_slots_.assign(m.rotation_nodes().size() * 4, -1);
-    for (std::size_t i = 0; i < m.rotation_nodes().size(); ++i) {
-      const auto& d = m.rotation_nodes()[i].dofs;
-      const int er = eq_of_dof_[static_cast<std::size_t>(d[3])];
-      for (std::size_t c = 0; c < 4; ++c) {
-        const int ec = eq_of_dof_[static_cast<std::size_t>(d[c])];
-        if (er >= 0 && ec >= 0) node_slots_[i * 4 + c] = pattern_.find(er, ec);
-      }
-    }
+    m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+      constexpr int n = K::size;
+      auto& slots = std::get<node_slot_table<K>>(node_slots_).slots;
+      slots.assign(nodes.size() * static_cast<std::size_t>(n * n), -1);
+      for (std::size_t i = 0; i < nodes.size(); ++i)
+        for (int r = 0; r < n; ++r) {
+          const int er = eq_of_dof_[static_cast<std::size_t>(nodes[i].dofs[static_cast<std::size_t>(r)])];
+          for (int c = 0; c < n; ++c) {
+            const int ec = eq_of_dof_[static_cast<std::size_t>(nodes[i].dofs[static_cast<std::size_t>(c)])];
+            if (K::rows[static_cast<std::size_t>(r)] && er >= 0 && ec >= 0)
+              slots[i * n * n + static_cast<std::size_t>(r * n + c)] = pattern_.find(er, ec);
+          }
+        }
+    });
     // Scatter maps: per instance, the local entries (r, c) whose row and column
     // both have an equation, with their slots (entries on ground or prescribed
     // DOFs are not listed, so numeric assembly does not visit them).
@@ -212,7 +220,9 @@ class assembler<model<Es...>> {
     std::size_t ti = 0;
     const auto& maps = partial_rows_ && !info.want_jacobian && info.jacobian_types ? partial_maps_ : maps_;
     (evaluate_type<Es>(m, s, c, info, ctx, std::get<index_of<Es, Es...>()>(maps), ti++), ...);
-    evaluate_rotation_nodes(m, s, c, info, ctx);
+    m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+      evaluate_nodes<K>(nodes, std::get<node_slot_table<K>>(node_slots_).slots, s, c, info, ctx);
+    });
     recommended_step_ = ctx.recommended_step;
   }
 
@@ -374,53 +384,60 @@ class assembler<model<Es...>> {
     }
   }
 
-  /// The norm equation of every rotational node, once per node: the flow
-  /// Mu d(Lq)/dt = Mu (q . q') / Lq on the hidden q4, with dF/dq' = Mu q / Lq and
-  /// dF/dq = Mu (q' / Lq - (q . q') q / Lq^3). Lq near zero or far from 1 is code 75,
-  /// reported in the name of the node's first element.
-  void evaluate_rotation_nodes(const model_type& m, const global_state& s, const jacobian_coefficients& c,
-                               const call_info& info, element_context& ctx) {
-    const auto& nodes = m.rotation_nodes();
-    const double mu = spatial::norm_viscosity(info.dabsi);
+  /// The own equations of the nodes of kind K (core/node_kind.hpp), once per node:
+  /// flows in the rows K::rows and, with info.want_jacobian, their entries
+  /// cu dF/du + cv dF/dv in the node's columns (`slots`: per node, n x n slots,
+  /// row-major, -1 where absent). Never allocates.
+  template <class K>
+  void evaluate_nodes(const std::vector<typename K::record>& nodes, const std::vector<int>& slots,
+                      const global_state& s, const jacobian_coefficients& c, const call_info& info,
+                      element_context& ctx) {
+    constexpr int n = K::size;
+    node_values<n> x;
+    node_flows<n> out;
+    const node_call call{info.dabsi, info.want_jacobian};
     for (std::size_t i = 0; i < nodes.size(); ++i) {
-      const auto& node = nodes[i];
-      Eigen::Vector4d q, p;
-      for (int k = 0; k < 4; ++k) {
-        q(k) = s.u(node.dofs[static_cast<std::size_t>(k)]);
-        p(k) = s.v(node.dofs[static_cast<std::size_t>(k)]);
+      const auto& dofs = nodes[i].dofs;
+      for (int k = 0; k < n; ++k) {
+        const auto d = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]);
+        x.u(k) = s.u(d);
+        x.v(k) = s.v(d);
+        x.a(k) = s.a(d);
       }
-      const double lq = q.norm();
-      if (!(lq > spatial::lq_near_zero) || !std::isfinite(lq) || !(std::abs(lq - 1.0) <= spatial::lq_far_from_one)) {
-        ctx.set_identity(node.owner_type.empty() ? std::string_view("ROTATION NODE") : std::string_view(node.owner_type),
-                         node.owner_instance.empty() ? std::string_view(node.name) : std::string_view(node.owner_instance));
-        if (!(lq > spatial::lq_near_zero) || !std::isfinite(lq))
-          ctx.singular("rotational node '" + node.name + "': Lq near zero (the quaternion norm |q| = " + to_text(lq) +
-                       "; it starts at 1 and must stay there): the orientation is undefined");
-        ctx.singular("rotational node '" + node.name + "': Lq far from 1 (the quaternion norm |q| = " + to_text(lq) +
-                     " has drifted from its start value 1 by more than " + to_text(spatial::lq_far_from_one) +
-                     "; check the initial quaternion and the step)");
-      }
-      const double g = q.dot(p);
-      const double f = mu * g / lq;
-      const auto d4 = static_cast<Eigen::Index>(node.dofs[3]);
-      residual_(d4) += f;
-      abs_sum_(d4) += std::abs(f);
-      if (!info.want_jacobian) continue;
-      const int* slot = node_slots_.data() + i * 4;
-      for (int k = 0; k < 4; ++k) {
-        if (slot[k] < 0) continue;
-        const double dk = mu * (p(k) / lq - g * q(k) / (lq * lq * lq));
-        const double dc = mu * q(k) / lq;
-        values_[static_cast<std::size_t>(slot[k])] += c.cu * dk + c.cv * dc;
-        if (keep_blocks_) {
-          k_values_[static_cast<std::size_t>(slot[k])] += dk;
-          c_values_[static_cast<std::size_t>(slot[k])] += dc;
+      K::evaluate(nodes[i], x, call, out, ctx);
+      for (int r = 0; r < n; ++r) {
+        if (!K::rows[static_cast<std::size_t>(r)]) continue;
+        const auto d = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(r)]);
+        residual_(d) += out.f(r);
+        abs_sum_(d) += std::abs(out.f(r));
+        if (!info.want_jacobian) continue;
+        const int* slot = slots.data() + i * n * n + static_cast<std::size_t>(r * n);
+        for (int k = 0; k < n; ++k) {
+          if (slot[k] < 0) continue;
+          const auto q = static_cast<std::size_t>(slot[k]);
+          values_[q] += c.cu * out.K(r, k) + c.cv * out.C(r, k);
+          if (keep_blocks_) {
+            k_values_[q] += out.K(r, k);
+            c_values_[q] += out.C(r, k);
+          }
         }
       }
     }
   }
 
-  std::vector<int> node_slots_;  // per rotational node: slots of (q4 row, columns q1..q4), -1 if absent
+  using node_kinds = typename model_type::node_kinds;
+  /// Per node kind: the slots of its nodes' rows (evaluate_nodes).
+  template <class K>
+  struct node_slot_table {
+    std::vector<int> slots;
+  };
+  template <class L>
+  struct slot_tables;
+  template <class... Ks>
+  struct slot_tables<type_list<Ks...>> {
+    using type = std::tuple<node_slot_table<Ks>...>;
+  };
+  typename slot_tables<node_kinds>::type node_slots_;
   std::vector<int> eq_of_dof_, dof_of_eq_;
   linalg::sparsity_pattern pattern_;
   std::tuple<scatter_map<Es>...> maps_;

@@ -101,7 +101,8 @@ class driver_core {
     });
   }
   /// (Re)builds the equations and the pattern; DOFs added since the start (new
-  /// internal or user DOFs) start at rest, a new rotational node at the identity.
+  /// internal or user DOFs) start at rest, the hidden DOFs of a new node at their start
+  /// values (core/node_kind.hpp; a new rotational node at the identity).
   /// The driver then analyses the pattern with its solver.
   void rebuild_equations() {
     if (prescribed_.size() != static_cast<std::size_t>(m_.dof_count())) {
@@ -113,16 +114,15 @@ class driver_core {
       g.v.head(old) = s_.v;
       g.a.head(old) = s_.a;
       g.p.head(old) = s_.p;
-      for (const auto& node : m_.rotation_nodes())
-        if (node.dofs[3] >= old) g.u(node.dofs[3]) = 1.0;
+      m_.start_hidden_dofs(g.u, static_cast<int>(old));
       s_ = g;
     }
     asm_.build(m_, prescribed_);
     rhs_.resize(static_cast<std::size_t>(asm_.equations()));
     s0_ = s_;
   }
-  /// The zero step up to the consistent initial derivatives: the hidden q4 of
-  /// every rotational node at 1, NEWINT, initial conditions and prescribed
+  /// The zero step up to the consistent initial derivatives: the hidden DOFs of
+  /// the nodes at their start values (the rotational nodes' q4 at 1), NEWINT, initial conditions and prescribed
   /// motions, build() (the driver's: rebuild_equations and its analysis),
   /// initial derivatives with `solver` (which then holds their factorisation),
   /// and the log's note on initial conditions a massless DOF loses. The driver
@@ -130,7 +130,7 @@ class driver_core {
   template <class Solver, class Build>
   void start_zero_step(Solver& solver, Build&& build) {
     s_.resize(m_.dof_count());
-    for (const auto& node : m_.rotation_nodes()) s_.u(node.dofs[3]) = 1.0;
+    m_.start_hidden_dofs(s_.u);
     const std::vector<std::string> driver = detect_sources(m_, prescribed_, log_);
     new_integration();
     const auto [set_u, set_v] =
@@ -142,18 +142,18 @@ class driver_core {
         m_, asm_, solver, s_, rhs_, stats_, log_, [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
     warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);
     std::vector<double> classes(static_cast<std::size_t>(m_.dof_count()), 0.0);
-    std::vector<char> q4(classes.size(), 0);  // hidden q4: not counted as massless
-    for (const auto& node : m_.rotation_nodes()) q4[static_cast<std::size_t>(node.dofs[3])] = 1;
+    const std::vector<char> hidden = m_.hidden_dofs();  // a node's hidden DOF (the q4): not counted as massless
     for (int i = 0; i < static_cast<int>(kind.size()); ++i) {
       const auto d = static_cast<std::size_t>(asm_.dof_of(i));
       if (kind[static_cast<std::size_t>(i)] == 3) classes[d] = dof_class_index3;
-      if (kind[static_cast<std::size_t>(i)] == 0 && !q4[d]) classes[d] = dof_class_massless;
+      if (kind[static_cast<std::size_t>(i)] == 0 && !hidden[d]) classes[d] = dof_class_massless;
     }
     set_dof_classes(classes);
   }
   /// The DOF classes of the zero step, per DOF: dof_class_index3 (the multiplier of an index-3 constraint),
-  /// dof_class_massless (an equation with neither mass nor viscosity; the hidden q4 not counted) or 0. Checkpoints
-  /// keep them, so that a restored run leaves the same DOFs out of its error tests and warns as the first run.
+  /// dof_class_massless (an equation with neither mass nor viscosity; a node's hidden DOF not counted) or 0.
+  /// Checkpoints keep them, so that a restored run leaves the same DOFs out of its error tests and warns as the
+  /// first run.
   std::vector<double> dof_classes() const {
     std::vector<double> c(static_cast<std::size_t>(m_.dof_count()), 0.0);
     for (std::size_t d = 0; d < c.size() && d < index3_.size(); ++d)
@@ -225,8 +225,8 @@ class driver_core {
   /// not by an integrated derivative; Hairer and Wanner, Solving ODEs II, VII.3).
   std::vector<char> index3_;
   /// Equations with neither mass nor viscosity (algebraic, found at the zero step; index-3 multipliers and the
-  /// rotational nodes' hidden q4 not counted), and the first one's DOF (-1 if none): the undamped-scheme warning of
-  /// simulation::run names it.
+  /// nodes' hidden DOFs, such as the rotational q4, not counted), and the first one's DOF (-1 if none): the
+  /// undamped-scheme warning of simulation::run names it.
   std::vector<char> massless_;
   int massless_count_ = 0;
   int massless_dof_ = -1;

@@ -16,6 +16,7 @@
 #include "pradis/core/diagnostics.hpp"
 #include "pradis/core/element.hpp"
 #include "pradis/core/error.hpp"
+#include "pradis/core/node_kind.hpp"
 #include "pradis/integrators/options.hpp"
 
 namespace pradis::detail {
@@ -116,34 +117,68 @@ std::pair<std::vector<std::string>, std::vector<std::string>> apply_initial_cond
   return {std::move(set_u), std::move(set_v)};
 }
 
-/// The q4 rows of the zero step's matrix and right-hand side: the hidden q4's
-/// unknown is its acceleration, from the norm equation differentiated twice,
-/// d2(Lq)/dt2 = (q . q'' + |q'|^2 - (q . q')^2 / Lq^2) / Lq = 0: without it q4''
-/// would start inconsistent and the trapezoidal rule would carry the error on as
-/// an undamped alternation of q'' (which enters the moments through E(q) q'').
+/// The rows of the nodes' hidden DOFs (core/node_kind.hpp) in the zero step's
+/// matrix and right-hand side: a hidden DOF's unknown is its acceleration, from
+/// its node's equation differentiated once more (K::zero_step_row; for the
+/// rotational q4, d2(Lq)/dt2 = 0).
 template <class Model, class Assembler>
-void rotation_norm_rows(const Model& m, const Assembler& as, const global_state& s, std::vector<double>& j,
-                        std::vector<double>& rhs) {
+void hidden_dof_rows(const Model& m, const Assembler& as, const global_state& s, std::vector<double>& j,
+                     std::vector<double>& rhs) {
   const auto& pat = as.pattern();
-  for (const auto& node : m.rotation_nodes()) {
-    const int e4 = as.equation_of(node.dofs[3]);
-    if (e4 < 0) continue;
-    Eigen::Vector4d q, qd, qdd;
-    for (int k = 0; k < 4; ++k) {
-      const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
-      q(k) = s.u(d);
-      qd(k) = s.v(d);
-      qdd(k) = s.a(d);
-    }
-    const double lq = q.norm(), g = q.dot(qd);
-    for (int qq = pat.row_ptr[static_cast<std::size_t>(e4)]; qq < pat.row_ptr[static_cast<std::size_t>(e4) + 1]; ++qq)
-      j[static_cast<std::size_t>(qq)] = 0.0;
-    for (int k = 0; k < 4; ++k) {
-      const int ec = as.equation_of(node.dofs[static_cast<std::size_t>(k)]);
-      if (ec >= 0) j[static_cast<std::size_t>(pat.find(e4, ec))] = q(k) / lq;
-    }
-    rhs[static_cast<std::size_t>(e4)] = -(q.dot(qdd) + qd.squaredNorm() - g * g / (lq * lq)) / lq;
-  }
+  m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+    constexpr int n = K::size;
+    node_values<n> x;
+    Eigen::Matrix<double, n, 1> row;
+    for (const auto& node : nodes)
+      for (int h = 0; h < n; ++h) {
+        if (!K::hidden[static_cast<std::size_t>(h)]) continue;
+        const int eh = as.equation_of(node.dofs[static_cast<std::size_t>(h)]);
+        if (eh < 0) continue;
+        for (int k = 0; k < n; ++k) {
+          const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
+          x.u(k) = s.u(d);
+          x.v(k) = s.v(d);
+          x.a(k) = s.a(d);
+        }
+        double r = 0;
+        K::zero_step_row(x, h, row, r);
+        for (int q = pat.row_ptr[static_cast<std::size_t>(eh)]; q < pat.row_ptr[static_cast<std::size_t>(eh) + 1]; ++q)
+          j[static_cast<std::size_t>(q)] = 0.0;
+        for (int k = 0; k < n; ++k) {
+          const int ec = as.equation_of(node.dofs[static_cast<std::size_t>(k)]);
+          if (ec >= 0) j[static_cast<std::size_t>(pat.find(eh, ec))] = row(k);
+        }
+        rhs[static_cast<std::size_t>(eh)] = r;
+      }
+  });
+}
+
+/// The zero step's kinds of the nodes' DOFs (core/node_kind.hpp): a hidden DOF is
+/// inertial (its unknown is its acceleration, hidden_dof_rows); with
+/// K::inertial_block, another DOF of the node is inertial when the assembled inertia
+/// block (mvals) has an entry in its row in any of the node's columns (a rotational
+/// node's own diagonal E(q)-entry may vanish, e.g. at 180 degrees).
+template <class Model, class Assembler>
+void mark_node_kinds(const Model& m, const Assembler& as, const std::vector<double>& mvals, std::vector<char>& kind) {
+  const auto& pat = as.pattern();
+  m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+    constexpr int n = K::size;
+    for (const auto& node : nodes)
+      for (int r = 0; r < n; ++r) {
+        const int er = as.equation_of(node.dofs[static_cast<std::size_t>(r)]);
+        if (er < 0) continue;
+        if (K::hidden[static_cast<std::size_t>(r)]) {
+          kind[static_cast<std::size_t>(er)] = 1;
+          continue;
+        }
+        if (!K::inertial_block) continue;
+        for (int c = 0; c < n; ++c) {
+          const int ec = as.equation_of(node.dofs[static_cast<std::size_t>(c)]);
+          const int q = ec >= 0 ? pat.find(er, ec) : -1;
+          if (q >= 0 && mvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(er)] = 1;
+        }
+      }
+  });
 }
 
 /// Marks the index-3 constraint equations among the algebraic ones (kind 0) as
@@ -252,27 +287,9 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
       if (q >= 0 && mvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(i)] = 1;
       else if (q >= 0 && cvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(i)] = 2;
     }
-    // Rotational nodes: the hidden q4's unknown is its acceleration, from the norm
-    // equation differentiated once more, d2(Lq)/dt2 = 0, i.e.
-    // (q . q'' + |q'|^2 - (q . q')^2 / Lq^2) / Lq = 0: without it q4'' would start
-    // inconsistent and the trapezoidal rule would carry the error on as an
-    // undamped alternation of q'' (which enters the moments through E(q) q'').
-    // q1..q3 of a node are inertial when the node's inertia block has an entry in
-    // their row (their own diagonal E(q)-entry may vanish, e.g. at 180 degrees).
-    for (const auto& node : m.rotation_nodes()) {
-      const int e4 = as.equation_of(node.dofs[3]);
-      if (e4 < 0) continue;
-      kind[static_cast<std::size_t>(e4)] = 1;
-      for (int r = 0; r < 3; ++r) {
-        const int er = as.equation_of(node.dofs[static_cast<std::size_t>(r)]);
-        if (er < 0) continue;
-        for (int c = 0; c < 4; ++c) {
-          const int ec = as.equation_of(node.dofs[static_cast<std::size_t>(c)]);
-          const int q = ec >= 0 ? pat.find(er, ec) : -1;
-          if (q >= 0 && mvals[static_cast<std::size_t>(q)] != 0.0) kind[static_cast<std::size_t>(er)] = 1;
-        }
-      }
-    }
+    // Nodes: a hidden DOF's unknown is its acceleration (the rotational q4's from
+    // d2(Lq)/dt2 = 0); the node's other DOFs are inertial by its inertia block.
+    mark_node_kinds(m, as, mvals, kind);
     // Index-3 constraint rows (multipliers, docs/joints.md): the multiplier's
     // unknown is its value v, and its row becomes the constraint's second time
     // derivative, G a + (dG/dt) v = 0, so that the initial multipliers and
@@ -297,7 +314,7 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
           else j[sq] = k == 1 ? mvals[sq] : (k == 2 || k == 3 ? cvals[sq] : (r == c ? 1.0 : 0.0));
         }
       rhs = rhs0;
-      rotation_norm_rows(m, as, s, j, rhs);
+      hidden_dof_rows(m, as, s, j, rhs);
       try {
         solver.factorize(j);
         ++stats.factorizations;

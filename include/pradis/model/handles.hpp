@@ -41,8 +41,9 @@ inline std::uint32_t next_model_serial() noexcept {
 /// are external DOFs: the user connects, fixes (connects to the ground) or loads
 /// only these, and their flows are the moments about the global X, Y, Z axes. q4 is
 /// the hidden fourth potential: an internal DOF the user never names, initialised
-/// to 1 and shared by every element connected to the node; the model assembles its
-/// norm equation Mu d|q|/dt once per node (see docs/rotations.md).
+/// to 1 and shared by every element connected to the node; its norm equation
+/// Mu d|q|/dt is assembled once per node (spatial::rotation_node_kind, a node kind of
+/// core/node_kind.hpp; see docs/rotations.md).
 struct rotation_node {
   dof q1{}, q2{}, q3{};  ///< external potentials (a component connected to the ground is fixed)
   dof q4{};              ///< the hidden fourth potential

@@ -26,6 +26,7 @@
 #include "pradis/core/error.hpp"
 #include "pradis/core/type_list.hpp"
 #include "pradis/model/handles.hpp"
+#include "pradis/spatial/rotation_node_kind.hpp"
 
 namespace pradis {
 
@@ -101,10 +102,44 @@ class model {
     scale_fixed_[i] = 1;
   }
 
+  /// The node kinds of a model (core/node_kind.hpp): the rotational node
+  /// (spatial/rotation_node_kind.hpp).
+  using node_kinds = type_list<spatial::rotation_node_kind>;
+  /// The nodes of kind K.
+  template <NodeKind K>
+  const std::vector<typename K::record>& nodes() const {
+    return std::get<typename K::registry>(registries_).records();
+  }
+  /// Calls f(std::type_identity<K>{}, nodes<K>()) for every node kind K of the model.
+  template <class F>
+  void for_each_node_kind(F&& f) const {
+    [&]<class... Ks>(type_list<Ks...>) { (f(std::type_identity<Ks>{}, nodes<Ks>()), ...); }(node_kinds{});
+  }
+
+  /// Sets the hidden DOFs of every node (K::hidden) whose index is `from` or more to
+  /// their start potentials (K::start) in u, a vector over all DOFs.
+  void start_hidden_dofs(Eigen::VectorXd& u, int from = 0) const {
+    for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+      for (const auto& node : nodes)
+        for (std::size_t k = 0; k < static_cast<std::size_t>(K::size); ++k)
+          if (K::hidden[k] && node.dofs[k] >= from) u(static_cast<Eigen::Index>(node.dofs[k])) = K::start[k];
+    });
+  }
+  /// Per DOF: whether it is a hidden DOF of a node (K::hidden).
+  std::vector<char> hidden_dofs() const {
+    std::vector<char> h(static_cast<std::size_t>(dof_count()), 0);
+    for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+      for (const auto& node : nodes)
+        for (std::size_t k = 0; k < static_cast<std::size_t>(K::size); ++k)
+          if (K::hidden[k]) h[static_cast<std::size_t>(node.dofs[k])] = 1;
+    });
+    return h;
+  }
+
   /// Adds a spatial rotational node with three new external DOFs `<name>.q1`,
   /// `<name>.q2`, `<name>.q3` and the hidden `<name>.q4` (initialised to 1 at the zero step).
   rotation_node add_rotation_node(std::string name = {}) {
-    if (name.empty()) name = "rotation node " + std::to_string(rotation_nodes_.size() + 1);
+    if (name.empty()) name = "rotation node " + std::to_string(rotation_nodes().size() + 1);
     const dof a = add_dof(name + ".q1"), b = add_dof(name + ".q2"), c = add_dof(name + ".q3");
     return add_rotation_node(std::move(name), a, b, c);
   }
@@ -113,43 +148,32 @@ class model {
   /// node 0). A DOF that already belongs to a rotational node is code 110.
   rotation_node add_rotation_node(std::string name, dof q1, dof q2, dof q3) {
     for (const dof d : {q1, q2, q3}) checked_dof(d, "add_rotation_node");
-    const std::array<int, 3> t{q1.index, q2.index, q3.index};
-    check_rotation_triple(t, "", name);
-    if (name.empty()) name = "rotation node " + std::to_string(rotation_nodes_.size() + 1);
-    for (int k = 0; k < 3; ++k)
-      if (t[static_cast<std::size_t>(k)] != 0 && rotation_role_.count(t[static_cast<std::size_t>(k)]))
-        throw error(error_code::invalid_model,
-                    "DOF '" + dof_name(t[static_cast<std::size_t>(k)]) + "' already belongs to rotational node '" +
-                        rotation_nodes_[static_cast<std::size_t>(rotation_role_.at(t[static_cast<std::size_t>(k)]).first)]
-                            .name +
-                        "'",
-                    {}, name);
-    if (t == std::array<int, 3>{0, 0, 0} && ground_rotation_node_ >= 0)
-      throw error(error_code::invalid_model, "the fully fixed rotational node (all three components on the ground) "
-                                             "already exists", {}, name);
-    return rotation_node_handle(create_rotation_node(std::move(name), t));
+    return rotation_node_handle(rotations().add(std::move(name), {q1.index, q2.index, q3.index}, dof_count(),
+                                                new_dof_index(), dof_namer()));
   }
   /// The rotational nodes of the model (explicit ones and those created by elements).
-  const std::vector<rotation_node_record>& rotation_nodes() const noexcept { return rotation_nodes_; }
+  const std::vector<rotation_node_record>& rotation_nodes() const noexcept {
+    return std::get<spatial::rotation_node_registry>(registries_).records();
+  }
   /// Handle of rotational node i.
   rotation_node rotation_node_handle(int i) const {
-    const auto& r = rotation_nodes_.at(static_cast<std::size_t>(i));
+    const auto& r = rotation_nodes().at(static_cast<std::size_t>(i));
     return rotation_node{dof{r.dofs[0], serial_}, dof{r.dofs[1], serial_}, dof{r.dofs[2], serial_},
                          dof{r.dofs[3], serial_}, i};
   }
   /// The rotational node whose external DOF q1, q2 or q3 is `d` (not the ground), if any.
   std::optional<rotation_node> find_rotation_node(dof d) const {
-    auto it = rotation_role_.find(d.index);
-    if (d.index == 0 || it == rotation_role_.end()) return std::nullopt;
-    return rotation_node_handle(it->second.first);
+    const int i = std::get<spatial::rotation_node_registry>(registries_).node_of(d.index);
+    if (i < 0) return std::nullopt;
+    return rotation_node_handle(i);
   }
   /// The rotational node of slot k (0-based, in E::rotation_nodes order) of an instance.
   template <class E>
   rotation_node rotation_node_of(element_ref<E> r, int k = 0) const {
     const auto slot = element_traits<E>::rotation_nodes.at(static_cast<std::size_t>(k));
     const int q4 = instance(r).dofs[static_cast<std::size_t>(slot.q4)];
-    for (std::size_t i = 0; i < rotation_nodes_.size(); ++i)
-      if (rotation_nodes_[i].dofs[3] == q4) return rotation_node_handle(static_cast<int>(i));
+    for (std::size_t i = 0; i < rotation_nodes().size(); ++i)
+      if (rotation_nodes()[i].dofs[3] == q4) return rotation_node_handle(static_cast<int>(i));
     throw error(error_code::invalid_model, "no rotational node on this slot");
   }
 
@@ -343,7 +367,8 @@ class model {
         if (sl.q4 == p.ext + k) {
           const auto q1 = static_cast<std::size_t>(sl.q1);
           const std::array<int, 3> t{in.dofs[q1], in.dofs[q1 + 1], in.dofs[q1 + 2]};
-          hidden = rotation_nodes_[static_cast<std::size_t>(resolve_rotation_node(t, p.name, name))].dofs[3];
+          const int node = rotations().resolve(t, p.name, name, dof_count(), new_dof_index(), dof_namer());
+          hidden = rotation_nodes()[static_cast<std::size_t>(node)].dofs[3];
         }
       in.dofs[static_cast<std::size_t>(p.ext + k)] =
           hidden >= 0 ? hidden : add_dof(name + ".internal" + std::to_string(k + 1)).index;
@@ -404,66 +429,18 @@ class model {
     }
   }
 
-  /// Refuses a triple with a repeated non-ground DOF (code 110).
-  void check_rotation_triple(const std::array<int, 3>& t, std::string_view type, const std::string& inst) const {
-    for (int i = 0; i < 3; ++i) {
-      const int d = t[static_cast<std::size_t>(i)];
-      if (d < 0 || d >= dof_count())
-        throw error(error_code::invalid_model, "DOF " + std::to_string(d) + " does not exist in this model",
-                    std::string(type), inst);
-      for (int j = 0; j < i; ++j)
-        if (d != 0 && d == t[static_cast<std::size_t>(j)])
-          throw error(error_code::invalid_model,
-                      "DOF '" + dof_name(d) + "' is given twice among the q1, q2, q3 of a rotational node",
-                      std::string(type), inst);
-    }
+  spatial::rotation_node_registry& rotations() { return std::get<spatial::rotation_node_registry>(registries_); }
+  /// For the registries: adds a DOF by name and returns its index.
+  auto new_dof_index() {
+    return [this](std::string n) { return add_dof(std::move(n)).index; };
   }
-  int create_rotation_node(std::string name, const std::array<int, 3>& t) {
-    const int idx = static_cast<int>(rotation_nodes_.size());
-    const int q4 = add_dof(name + ".q4").index;
-    rotation_nodes_.push_back(rotation_node_record{std::move(name), {t[0], t[1], t[2], q4}, {}, {}});
-    for (int k = 0; k < 3; ++k)
-      if (t[static_cast<std::size_t>(k)] != 0) rotation_role_[t[static_cast<std::size_t>(k)]] = {idx, k};
-    if (t == std::array<int, 3>{0, 0, 0}) ground_rotation_node_ = idx;
-    return idx;
-  }
-  /// The rotational node whose q1, q2, q3 are the DOFs t: the existing one, or a new
-  /// node (with a new hidden q4) if none of them belongs to one. A DOF that belongs
-  /// to another node, or to this node in another role, is code 110.
-  int resolve_rotation_node(const std::array<int, 3>& t, std::string_view type, const std::string& inst) {
-    check_rotation_triple(t, type, inst);
-    int found = -1;
-    for (int k = 0; k < 3; ++k) {
-      const int d = t[static_cast<std::size_t>(k)];
-      if (d == 0) continue;
-      auto it = rotation_role_.find(d);
-      if (it == rotation_role_.end()) continue;
-      const auto& rec = rotation_nodes_[static_cast<std::size_t>(it->second.first)];
-      if (found >= 0 && found != it->second.first)
-        throw error(error_code::invalid_model, "the DOFs connected as q1, q2, q3 belong to different rotational nodes",
-                    std::string(type), inst);
-      if (it->second.second != k || rec.dofs[0] != t[0] || rec.dofs[1] != t[1] || rec.dofs[2] != t[2])
-        throw error(error_code::invalid_model,
-                    "DOF '" + dof_name(d) + "' is q" + std::to_string(it->second.second + 1) + " of rotational node '" +
-                        rec.name + "' (q1, q2, q3 = DOFs " + std::to_string(rec.dofs[0]) + ", " +
-                        std::to_string(rec.dofs[1]) + ", " + std::to_string(rec.dofs[2]) +
-                        "); an element must connect all three, in this order",
-                    std::string(type), inst);
-      found = it->second.first;
-    }
-    if (found < 0 && t == std::array<int, 3>{0, 0, 0}) found = ground_rotation_node_;
-    if (found < 0) found = create_rotation_node("rotation node " + std::to_string(rotation_nodes_.size() + 1), t);
-    auto& rec = rotation_nodes_[static_cast<std::size_t>(found)];
-    if (rec.owner_instance.empty()) {
-      rec.owner_type = std::string(type);
-      rec.owner_instance = inst;
-    }
-    return found;
+  /// For the registries: the name of DOF d.
+  auto dof_namer() const {
+    return [this](int d) { return dof_name(d); };
   }
 
-  std::vector<rotation_node_record> rotation_nodes_;
-  std::unordered_map<int, std::pair<int, int>> rotation_role_;  // external DOF -> (node, component)
-  int ground_rotation_node_ = -1;
+  /// One registry per node kind (core/node_kind.hpp), in node_kinds order.
+  node_registries_t<node_kinds> registries_;
   std::vector<std::string> dof_names_;
   std::vector<domain> dof_domains_;
   std::vector<dof_scale> dof_scales_;
