@@ -5,7 +5,10 @@
 /// drivers, consistent initialisation) knows nodes only through this concept;
 /// a domain supplies its kinds. spatial/ supplies the rotational node
 /// (spatial/rotation_node_kind.hpp): the quaternion q1..q4 whose hidden q4
-/// carries the norm equation Mu d|q|/dt.
+/// carries the norm equation Mu d|q|/dt, which every model has. Another kind
+/// enters a model through the element types that declare it
+/// (`using node_kinds = type_list<K>;`, node_kinds_of), and its nodes through
+/// model::add_node<K> (tests/core/test_node_kind.cpp is an example).
 ///
 /// What a node kind K says (K::record: what a model keeps about one node, with its
 /// DOFs in `dofs`; K::registry: what a model keeps about all its nodes of kind K,
@@ -74,6 +77,18 @@ concept NodeKind = requires {
   { r.dofs[0] } -> std::convertible_to<int>;
   K::evaluate(r, x, c, out, ctx);
   K::zero_step_row(x, 0, row, rhs);
+};
+
+/// The node kinds an element type E brings into every model that lists it: E::node_kinds
+/// (a type_list of node kinds) if E declares it, else none.
+template <class E>
+struct node_kinds_of {
+  using type = type_list<>;
+};
+template <class E>
+  requires requires { typename E::node_kinds; }
+struct node_kinds_of<E> {
+  using type = typename E::node_kinds;
 };
 
 /// The tuple of the registries (K::registry, what a model keeps about its nodes of

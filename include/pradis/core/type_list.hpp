@@ -56,4 +56,23 @@ struct apply<T, type_list<A...>> {
 template <template <class...> class T, class L>
 using apply_t = typename apply<T, L>::type;
 
+/// A type list without repeats (the first of each kept): unique_t<type_list<A, B, A>> is type_list<A, B>.
+template <class Done, class... Rest>
+struct unique_impl {
+  using type = Done;
+};
+template <class... D, class T, class... Rest>
+struct unique_impl<type_list<D...>, T, Rest...> {
+  using type = typename unique_impl<std::conditional_t<contains_v<T, D...>, type_list<D...>, type_list<D..., T>>,
+                                    Rest...>::type;
+};
+template <class L>
+struct unique;
+template <class... Ts>
+struct unique<type_list<Ts...>> {
+  using type = typename unique_impl<type_list<>, Ts...>::type;
+};
+template <class L>
+using unique_t = typename unique<L>::type;
+
 }  // namespace pradis

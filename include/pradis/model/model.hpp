@@ -103,12 +103,37 @@ class model {
   }
 
   /// The node kinds of a model (core/node_kind.hpp): the rotational node
-  /// (spatial/rotation_node_kind.hpp).
-  using node_kinds = type_list<spatial::rotation_node_kind>;
+  /// (spatial/rotation_node_kind.hpp), then those its element types declare
+  /// (E::node_kinds), each once.
+  using node_kinds =
+      unique_t<concat_t<type_list<spatial::rotation_node_kind>, typename node_kinds_of<Es>::type...>>;
+  static_assert([]<class... Ks>(type_list<Ks...>) { return (NodeKind<Ks> && ...); }(node_kinds{}),
+                "pradis: an element type declares a node kind that does not satisfy NodeKind (core/node_kind.hpp)");
   /// The nodes of kind K.
   template <NodeKind K>
   const std::vector<typename K::record>& nodes() const {
     return std::get<typename K::registry>(registries_).records();
+  }
+  /// Adds a node of kind K (a kind that an element type of the model declares) whose
+  /// registry takes records (`registry.add(record)`). Every DOF of the record must exist
+  /// in this model and a hidden one (K::hidden) must not be the ground (else code 110).
+  template <NodeKind K>
+  void add_node(typename K::record r) {
+    static_assert(contains_in<K>(node_kinds{}), "pradis: no element type of this model declares this node kind");
+    static_assert(requires(typename K::registry& g) { g.add(std::move(r)); },
+                  "pradis: this node kind's registry makes its nodes itself (it has no add(record))");
+    for (std::size_t k = 0; k < static_cast<std::size_t>(K::size); ++k) {
+      const int d = r.dofs[k];
+      if (d < 0 || d >= dof_count())
+        throw error(error_code::invalid_model, "DOF " + std::to_string(d) + " of a " + std::string(K::label) +
+                                                   " node does not exist in this model (connection " +
+                                                   std::to_string(k + 1) + ")");
+      if (d == 0 && K::hidden[k])
+        throw error(error_code::invalid_model, "the hidden DOF " + std::to_string(k + 1) + " of a " +
+                                                   std::string(K::label) + " node cannot be the ground");
+    }
+    std::get<typename K::registry>(registries_).add(std::move(r));
+    ++version_;
   }
   /// Calls f(std::type_identity<K>{}, nodes<K>()) for every node kind K of the model.
   template <class F>
@@ -439,6 +464,10 @@ class model {
     return [this](int d) { return dof_name(d); };
   }
 
+  template <class K, class... Ks>
+  static constexpr bool contains_in(type_list<Ks...>) {
+    return contains_v<K, Ks...>;
+  }
   /// One registry per node kind (core/node_kind.hpp), in node_kinds order.
   node_registries_t<node_kinds> registries_;
   std::vector<std::string> dof_names_;

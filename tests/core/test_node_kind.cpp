@@ -1,0 +1,166 @@
+// Node kinds (include/pradis/core/node_kind.hpp) as a plug-in point: a kind written
+// here, outside the library, that an element type declares (E::node_kinds) becomes
+// part of the model, and the assembler, the zero step and both drivers run it.
+//
+// The kind: an "integral node" (x, h) whose hidden DOF h carries the equation
+// h' - x = 0, so h(t) = integral of x from 0 to t. On the oscillator m x'' + k x = 0
+// with x(0) = 0, x'(0) = V, w = sqrt(k / m):
+//   x(t) = (V / w) sin(w t),   h(t) = (V / w^2) (1 - cos(w t))   (exact).
+// The zero step's row of h is d/dt of its equation, h'' = x' (so h''(0) = V).
+
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pradis/elements/library.hpp"
+#include "pradis/integrators/bdf/bdf_simulation.hpp"
+#include "pradis/integrators/simulation.hpp"
+#include "testing/test_support.hpp"
+
+using namespace pradis;
+using namespace pradis::elements;
+
+namespace {
+
+struct integral_record {
+  std::array<int, 2> dofs{};  ///< x, h
+};
+struct integral_registry {
+  std::vector<integral_record> nodes;
+  const std::vector<integral_record>& records() const noexcept { return nodes; }
+  void add(integral_record r) { nodes.push_back(r); }
+};
+/// The node equation h' - x = 0 in the row of the hidden h.
+struct integral_node {
+  using record = integral_record;
+  using registry = integral_registry;
+  static constexpr int size = 2;
+  static constexpr std::string_view label = "INTEGRAL";
+  static constexpr std::array<bool, 2> hidden{false, true};
+  static constexpr std::array<bool, 2> rows{false, true};
+  static constexpr std::array<double, 2> start{0, 0};
+  static constexpr bool inertial_block = false;
+  static void evaluate(const record&, const node_values<2>& x, const node_call& call, node_flows<2>& out,
+                       element_context&) {
+    out.f(1) = x.v(1) - x.u(0);
+    if (!call.want_jacobian) return;
+    out.K(1, 0) = -1;
+    out.K(1, 1) = 0;
+    out.C(1, 0) = 0;
+    out.C(1, 1) = 1;
+  }
+  static void zero_step_row(const node_values<2>& x, int, Eigen::Vector2d& row, double& rhs) {
+    row << 0, 1;
+    rhs = -(x.a(1) - x.v(0));
+  }
+};
+static_assert(NodeKind<integral_node>);
+
+/// An element type that brings the integral node into a model: inert (no flow), it
+/// only declares the kind. I numbers two such types.
+template <int I>
+struct integral_marker_t {
+  static constexpr std::string_view names[] = {"INTMARK", "INTMARK2"};
+  static constexpr pradis::passport passport{.name = names[I], .ext = 1, .par = 0, .adr = 1, .ign = 23};
+  static constexpr element_help help{.title = "integral node marker", .name = "declares the integral node kind",
+                                     .field = "test", .dofs = "1", .parameters = "", .work = "", .special = "none"};
+  using node_kinds = type_list<integral_node>;
+  struct parameters {};
+  parameters p;
+  explicit integral_marker_t(parameters) {}
+  static integral_marker_t from_parameters(std::span<const double>) { return integral_marker_t({}); }
+  static constexpr bool inert = true;
+  void evaluate(const local_input<integral_marker_t>&, local_output<integral_marker_t>&, element_context&) const {}
+};
+using integral_marker = integral_marker_t<0>;
+
+using integral_model = model<point_mass, linear_spring, initial_velocity, integral_marker>;
+static_assert(std::is_same_v<integral_model::node_kinds, type_list<spatial::rotation_node_kind, integral_node>>);
+static_assert(std::is_same_v<model<point_mass>::node_kinds, type_list<spatial::rotation_node_kind>>);
+// Two element types declaring the same kind bring it once.
+static_assert(std::is_same_v<model<integral_marker, integral_marker_t<1>>::node_kinds,
+                             type_list<spatial::rotation_node_kind, integral_node>>);
+
+constexpr double osc_mass = 2.0, osc_k = 8.0, osc_v0 = 1.5;  // w = 2 rad/s
+
+/// The oscillator with its integral node; x and h returned through the arguments.
+integral_model oscillator(dof& x, dof& h) {
+  integral_model m;
+  x = m.add_dof("x");
+  h = m.add_dof("h");
+  m.add<point_mass>("m", {osc_mass}, x);
+  m.add<linear_spring>("k", {osc_k}, x, m.ground());
+  m.add<initial_velocity>("v0", {osc_v0}, x);
+  m.add_node<integral_node>({{x.index, h.index}});
+  return m;
+}
+
+double exact_x(double t) {
+  const double w = std::sqrt(osc_k / osc_mass);
+  return osc_v0 / w * std::sin(w * t);
+}
+double exact_h(double t) {
+  const double w = std::sqrt(osc_k / osc_mass);
+  return osc_v0 / (w * w) * (1 - std::cos(w * t));
+}
+
+}  // namespace
+
+TEST_SUITE("core/node kinds") {
+  TEST_CASE("a node kind declared by an element type: h = integral of x under Newmark, its zero step h'' = x'") {
+    dof x, h;
+    integral_model m = oscillator(x, h);
+    REQUIRE(m.nodes<integral_node>().size() == 1);
+    CHECK(m.hidden_dofs()[static_cast<std::size_t>(h.index)] == 1);
+    simulation sim(m);
+    double worst = 0;
+    bool first = true;
+    sim.on_output([&](const auto& s) {
+      if (first) {  // the zero step: h' = x = 0 and h'' = x' = V from the node's row
+        CHECK(s.v(h) == doctest::Approx(0.0));
+        CHECK(s.a(h) == doctest::Approx(osc_v0).epsilon(1e-12));
+        first = false;
+      }
+      worst = std::max({worst, std::abs(s.u(x) - exact_x(s.time())), std::abs(s.u(h) - exact_h(s.time()))});
+    });
+    const run_statistics st = sim.run({.end = 3.0, .out = 0.05, .smax = 1e-3});
+    MESSAGE("integral node, Newmark h = 1e-3: worst |error| of x and h ", worst, " over ", st.steps, " steps");
+    // Trapezoidal rule: phase error w^3 t h^2 / 12 = 8 * 3 * 1e-6 / 12 = 2e-6 rad on amplitudes of at
+    // most 0.75, an error of about 1.5e-6 (measured 1.44e-6).
+    CHECK(worst < 5e-6);
+    CHECK(m.rotation_nodes().empty());
+  }
+
+  TEST_CASE("the same node under the BDF driver with error control follows the exact integral") {
+    dof x, h;
+    integral_model m = oscillator(x, h);
+    bdf_simulation sim(m);
+    double worst = 0;
+    sim.on_output([&](const auto& s) {
+      worst = std::max({worst, std::abs(s.u(x) - exact_x(s.time())), std::abs(s.u(h) - exact_h(s.time()))});
+    });
+    const run_statistics st =
+        sim.run({.end = 3.0, .out = 0.05, .smax = 0.1, .error_control = true, .dabsx = 1e-8, .drltx = 1e-8});
+    MESSAGE("integral node, BDF DRLTX 1e-8: worst |error| of x and h ", worst, " over ", st.steps, " steps");
+    CHECK(worst < 1e-6);
+  }
+
+  TEST_CASE("a node whose DOF does not exist, or whose hidden DOF is the ground, is code 110") {
+    integral_model m;
+    const dof x = m.add_dof("x");
+    const auto e1 = pradis_test::error_of([&] { m.add_node<integral_node>({{x.index, 7}}); });
+    REQUIRE(e1.has_value());
+    CHECK(e1->number() == 110);
+    CHECK(std::string(e1->message()).find("DOF 7 of a INTEGRAL node does not exist") != std::string::npos);
+    const auto e2 = pradis_test::error_of([&] { m.add_node<integral_node>({{x.index, 0}}); });
+    REQUIRE(e2.has_value());
+    CHECK(e2->number() == 110);
+    CHECK(std::string(e2->message()).find("hidden DOF 2 of a INTEGRAL node cannot be the ground") != std::string::npos);
+    CHECK(m.nodes<integral_node>().empty());
+  }
+}
