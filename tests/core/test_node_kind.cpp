@@ -65,8 +65,9 @@ static_assert(NodeKind<integral_node>);
 /// only declares the kind. I numbers two such types.
 template <int I>
 struct integral_marker_t {
-  static constexpr std::string_view names[] = {"INTMARK", "INTMARK2"};
-  static constexpr pradis::passport passport{.name = names[I], .ext = 1, .par = 0, .adr = 1, .ign = 23};
+  static constexpr pradis::passport passport{
+      .name = I == 0 ? std::string_view("INTMARK") : std::string_view("INTMARK2"), .ext = 1, .par = 0, .adr = 1,
+      .ign = 23};
   static constexpr element_help help{.title = "integral node marker", .name = "declares the integral node kind",
                                      .field = "test", .dofs = "1", .parameters = "", .work = "", .special = "none"};
   using node_kinds = type_list<integral_node>;
