@@ -10,13 +10,17 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
+#include "pradis/elements/composite.hpp"
+#include "pradis/elements/condensed.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/bdf/bdf_simulation.hpp"
 #include "pradis/integrators/simulation.hpp"
@@ -24,6 +28,21 @@
 
 using namespace pradis;
 using namespace pradis::elements;
+
+// The composites' specs (outside the anonymous namespace: the help title is read only when
+// a help text is made).
+namespace node_kind_specs {
+struct marked_mass_spec {
+  static constexpr std::string_view name = "MMASS";
+  static constexpr std::string_view title = "point mass with the integral node marker";
+  static constexpr int ext = 1, ent = 0;
+};
+struct marked_series_spec {
+  static constexpr std::string_view name = "MSERIES";
+  static constexpr std::string_view title = "two springs in series with the integral node marker";
+  static constexpr int ext = 2, ent = 1;
+};
+}  // namespace node_kind_specs
 
 namespace {
 
@@ -87,17 +106,38 @@ static_assert(std::is_same_v<model<point_mass>::node_kinds, type_list<spatial::r
 static_assert(std::is_same_v<model<integral_marker, integral_marker_t<1>>::node_kinds,
                              type_list<spatial::rotation_node_kind, integral_node>>);
 
+// A composite brings its parts' node kinds: a model that lists only the composite (a point
+// mass with the marker as a second part) has the integral node.
+using marked_mass = composite<node_kind_specs::marked_mass_spec, part<point_mass, 0>, part<integral_marker, 0>>;
+static_assert(std::is_same_v<marked_mass::node_kinds, type_list<integral_node>>);
+using composite_model = model<marked_mass, linear_spring, initial_velocity>;
+static_assert(std::is_same_v<composite_model::node_kinds, type_list<spatial::rotation_node_kind, integral_node>>);
+// A condensed composite brings them too (two springs in series, the marker on an end).
+using marked_series = condensed<node_kind_specs::marked_series_spec, part<linear_spring, 0, 2>,
+                                part<linear_spring, 2, 1>, part<integral_marker, 0>>;
+static_assert(std::is_same_v<model<marked_series>::node_kinds, type_list<spatial::rotation_node_kind, integral_node>>);
+
 constexpr double osc_mass = 2.0, osc_k = 8.0, osc_v0 = 1.5;  // w = 2 rad/s
 
+/// The oscillator's mass: a point mass, or the composite with the marker.
+template <class M>
+void add_mass(M& m, dof x) {
+  if constexpr (std::is_same_v<M, composite_model>)
+    m.template add<marked_mass>("m", {{{osc_mass}, {}}}, x);
+  else
+    m.template add<point_mass>("m", {osc_mass}, x);
+}
+
 /// The oscillator with its integral node; x and h returned through the arguments.
-integral_model oscillator(dof& x, dof& h) {
-  integral_model m;
+template <class M = integral_model>
+M oscillator(dof& x, dof& h) {
+  M m;
   x = m.add_dof("x");
   h = m.add_dof("h");
-  m.add<point_mass>("m", {osc_mass}, x);
-  m.add<linear_spring>("k", {osc_k}, x, m.ground());
-  m.add<initial_velocity>("v0", {osc_v0}, x);
-  m.add_node<integral_node>({{x.index, h.index}});
+  add_mass(m, x);
+  m.template add<linear_spring>("k", {osc_k}, x, m.ground());
+  m.template add<initial_velocity>("v0", {osc_v0}, x);
+  m.template add_node<integral_node>({{x.index, h.index}});
   return m;
 }
 
@@ -108,6 +148,11 @@ double exact_x(double t) {
 double exact_h(double t) {
   const double w = std::sqrt(osc_k / osc_mass);
   return osc_v0 / (w * w) * (1 - std::cos(w * t));
+}
+/// The integral of h: (V / w^2) (t - sin(w t) / w).
+double exact_h2(double t) {
+  const double w = std::sqrt(osc_k / osc_mass);
+  return osc_v0 / (w * w) * (t - std::sin(w * t) / w);
 }
 
 }  // namespace
@@ -163,5 +208,54 @@ TEST_SUITE("core/node kinds") {
     CHECK(e2->number() == 110);
     CHECK(std::string(e2->message()).find("hidden DOF 2 of a INTEGRAL node cannot be the ground") != std::string::npos);
     CHECK(m.nodes<integral_node>().empty());
+  }
+
+  TEST_CASE("a hidden DOF that is already a node's hidden DOF is code 110; a chain of nodes is not") {
+    dof x, h;
+    integral_model m = oscillator(x, h);
+    const dof y = m.add_dof("y");
+    // Two nodes would write two equations into the row of h.
+    const auto e1 = pradis_test::error_of([&] { m.add_node<integral_node>({{y.index, h.index}}); });
+    REQUIRE(e1.has_value());
+    CHECK(e1->number() == 110);
+    CHECK(std::string(e1->message()).find("hidden DOF 2 of a INTEGRAL node, 'h', is already the hidden DOF of a "
+                                          "node") != std::string::npos);
+    // The same for the hidden q4 of a rotational node (another kind).
+    const rotation_node r = m.add_rotation_node("r");
+    const auto e2 = pradis_test::error_of([&] { m.add_node<integral_node>({{y.index, r.q4.index}}); });
+    REQUIRE(e2.has_value());
+    CHECK(e2->number() == 110);
+    CHECK(std::string(e2->message()).find("'r.q4', is already the hidden DOF") != std::string::npos);
+    CHECK(m.nodes<integral_node>().size() == 1);
+  }
+
+  TEST_CASE("a chain of integral nodes: h2 = integral of h, where h is the first node's hidden DOF") {
+    dof x, h;
+    integral_model m = oscillator(x, h);
+    const dof h2 = m.add_dof("h2");
+    m.add_node<integral_node>({{h.index, h2.index}});  // h is hidden in the first node, an input here
+    REQUIRE(m.nodes<integral_node>().size() == 2);
+    simulation sim(m);
+    double worst = 0;
+    sim.on_output([&](const auto& s) {
+      worst = std::max({worst, std::abs(s.u(h) - exact_h(s.time())), std::abs(s.u(h2) - exact_h2(s.time()))});
+    });
+    const run_statistics st = sim.run({.end = 3.0, .out = 0.05, .smax = 1e-3});
+    MESSAGE("chain of integral nodes, Newmark h = 1e-3: worst |error| of h and h2 ", worst, " over ", st.steps,
+            " steps");
+    // h2 integrates h's phase error (at most 1.5e-6, see above) over 3 s: at most 4.5e-6.
+    CHECK(worst < 5e-6);
+  }
+
+  TEST_CASE("a model that lists only a composite with the marker as a part has the integral node") {
+    dof x, h;
+    composite_model m = oscillator<composite_model>(x, h);
+    REQUIRE(m.nodes<integral_node>().size() == 1);
+    simulation sim(m);
+    double worst = 0;
+    sim.on_output([&](const auto& s) { worst = std::max(worst, std::abs(s.u(h) - exact_h(s.time()))); });
+    sim.run({.end = 3.0, .out = 0.05, .smax = 1e-3});
+    MESSAGE("integral node brought by a composite, Newmark h = 1e-3: worst |error| of h ", worst);
+    CHECK(worst < 5e-6);
   }
 }

@@ -18,6 +18,7 @@
 
 #include "pradis/core/domain.hpp"
 #include "pradis/core/element.hpp"
+#include "pradis/core/node_kind.hpp"
 #include "pradis/elements/composite_detail.hpp"
 
 namespace pradis {
@@ -91,6 +92,9 @@ struct composite {
     for (std::size_t i = 0; i < a.size(); ++i) a[i] = rot_.slots[i];
     return a;
   }();
+  /// The node kinds the parts' element types declare (core/node_kind.hpp), each once: a model
+  /// that lists the composite has them as if it listed the parts' types.
+  using node_kinds = unique_t<concat_t<type_list<>, typename node_kinds_of<typename Ps::element>::type...>>;
 
  private:
   struct params_f {

@@ -138,6 +138,9 @@ struct condensed {
   }();
   /// Number of inner rotational nodes (q1..q3 internal), condensed with their q4.
   static constexpr int inner_rotation_nodes = lay_.n_inner;
+  /// The node kinds the parts declare (composite::node_kinds). Their nodes are added to the
+  /// model (model::add_node) on its DOFs, which the condensed DOFs are not.
+  using node_kinds = typename full_type::node_kinds;
 
  private:
   struct name_f {
