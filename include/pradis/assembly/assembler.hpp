@@ -221,7 +221,7 @@ class assembler<model<Es...>> {
     const auto& maps = partial_rows_ && !info.want_jacobian && info.jacobian_types ? partial_maps_ : maps_;
     (evaluate_type<Es>(m, s, c, info, ctx, std::get<index_of<Es, Es...>()>(maps), ti++), ...);
     m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
-      evaluate_nodes<K>(nodes, std::get<node_slot_table<K>>(node_slots_).slots, s, c, info, ctx);
+      evaluate_nodes<K>(m, nodes, std::get<node_slot_table<K>>(node_slots_).slots, s, c, info, ctx);
     });
     recommended_step_ = ctx.recommended_step;
   }
@@ -387,11 +387,13 @@ class assembler<model<Es...>> {
   /// The own equations of the nodes of kind K (core/node_kind.hpp), once per node:
   /// flows in the rows K::rows and, with info.want_jacobian, their entries
   /// cu dF/du + cv dF/dv in the node's columns (`slots`: per node, n x n slots,
-  /// row-major, -1 where absent). Never allocates.
+  /// row-major, -1 where absent). A flow or an assembled entry that is NaN or
+  /// infinite is code 150 in the name of the node (K::label and the DOF of its first
+  /// row). Never allocates.
   template <class K>
-  void evaluate_nodes(const std::vector<typename K::record>& nodes, const std::vector<int>& slots,
-                      const global_state& s, const jacobian_coefficients& c, const call_info& info,
-                      element_context& ctx) {
+  void evaluate_nodes(const model_type& m, const std::vector<typename K::record>& nodes,
+                      const std::vector<int>& slots, const global_state& s, const jacobian_coefficients& c,
+                      const call_info& info, element_context& ctx) {
     constexpr int n = K::size;
     node_values<n> x;
     node_flows<n> out;
@@ -405,24 +407,44 @@ class assembler<model<Es...>> {
         x.a(k) = s.a(d);
       }
       K::evaluate(nodes[i], x, call, out, ctx);
+      double check = 0;  // NaN if a flow or an entry is not finite (0 * inf is NaN)
       for (int r = 0; r < n; ++r) {
         if (!K::rows[static_cast<std::size_t>(r)]) continue;
         const auto d = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(r)]);
         residual_(d) += out.f(r);
         abs_sum_(d) += std::abs(out.f(r));
+        check += out.f(r) * 0.0;
         if (!info.want_jacobian) continue;
         const int* slot = slots.data() + i * n * n + static_cast<std::size_t>(r * n);
         for (int k = 0; k < n; ++k) {
           if (slot[k] < 0) continue;
           const auto q = static_cast<std::size_t>(slot[k]);
-          values_[q] += c.cu * out.K(r, k) + c.cv * out.C(r, k);
+          const double e = c.cu * out.K(r, k) + c.cv * out.C(r, k);
+          check += e * 0.0;
+          values_[q] += e;
           if (keep_blocks_) {
             k_values_[q] += out.K(r, k);
             c_values_[q] += out.C(r, k);
           }
         }
       }
+      if (check != 0.0) node_not_finite<K>(m, nodes[i], out, ctx);
     }
+  }
+  /// Code 150 for a node whose flows or Jacobian entries are not finite.
+  template <class K>
+  [[noreturn]] static void node_not_finite(const model_type& m, const typename K::record& node,
+                                           const node_flows<K::size>& out, element_context& ctx) {
+    int first = 0;
+    while (first + 1 < K::size && !K::rows[static_cast<std::size_t>(first)]) ++first;
+    const std::string& dof = m.dof_name(node.dofs[static_cast<std::size_t>(first)]);
+    ctx.set_identity(K::label, dof);
+    bool flows = true;
+    for (int r = 0; r < K::size; ++r)
+      if (K::rows[static_cast<std::size_t>(r)]) flows = flows && std::isfinite(out.f(r));
+    ctx.fail(error_code::non_finite, std::string(K::label) + " node of DOF '" + dof + "': " +
+                                         (flows ? "a Jacobian entry of its equation is NaN or infinite"
+                                                : "a flow of its equation is NaN or infinite"));
   }
 
   using node_kinds = typename model_type::node_kinds;

@@ -21,7 +21,9 @@
 /// - K::evaluate(record, values, call, out, ctx): the node's flows and, with
 ///   call.want_jacobian, their derivatives. Never allocates; a node state in which
 ///   its equation is undefined is a pradis::error through ctx (the node's owner is
-///   named).
+///   named). At the zero step it also gives the hidden DOFs' start velocities: those
+///   that make the flows of the hidden rows vanish, where their dF/dv block is regular
+///   (detail::hidden_dof_velocities).
 /// - K::zero_step_row(values, k, row, rhs): at the zero step (consistent
 ///   initial derivatives) the unknown of a hidden DOF k is its acceleration: the
 ///   row of d/dt of the node's equation over the accelerations of the node's DOFs

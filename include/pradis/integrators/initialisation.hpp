@@ -6,9 +6,12 @@
 /// accelerations of inertial DOFs, velocities of first-order DOFs).
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -115,6 +118,73 @@ std::pair<std::vector<std::string>, std::vector<std::string>> apply_initial_cond
     }
   });
   return {std::move(set_u), std::move(set_v)};
+}
+
+/// The start velocities of the nodes' hidden DOFs (core/node_kind.hpp), made
+/// consistent with the nodes' own equations before the zero step solves for the
+/// accelerations. The initial conditions set the velocities of the other DOFs; a
+/// hidden DOF starts at K::start with velocity 0, which the node's equation may
+/// contradict (h' = x with x(0) != 0). For each node, the velocities v_h of its
+/// free hidden DOFs are solved from its hidden rows, f_h(u, v) = 0, by Newton
+/// steps with the block dF_h/dv_h of K::evaluate (at most 4 steps; one for an
+/// equation linear in v, as the rotational norm equation, which gives
+/// q4' = -(q1 q1' + q2 q2' + q3 q3') / q4). A node whose block is singular (below
+/// 1e-8 of its rows' largest dF/dv entry: a rotational node at 180 degrees, or an
+/// equation that does not hold the hidden velocities) keeps them as they are.
+template <class Model, class Assembler>
+void hidden_dof_velocities(const Model& m, const Assembler& as, global_state& s, double dabsi, diagnostics& log) {
+  element_context ctx("node", "", &log);
+  m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+    constexpr int n = K::size;
+    using small_matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, n, n>;
+    std::array<int, static_cast<std::size_t>(n)> hid{};  // the node's free hidden DOFs with a row of its own
+    const node_call call{dabsi, true};
+    node_values<n> x;
+    node_flows<n> out;
+    for (const auto& node : nodes) {
+      int nh = 0;
+      for (int k = 0; k < n; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        if (K::hidden[kk] && K::rows[kk] && as.equation_of(node.dofs[kk]) >= 0) hid[static_cast<std::size_t>(nh++)] = k;
+      }
+      if (nh == 0) continue;
+      for (int it = 0; it < 4; ++it) {
+        for (int k = 0; k < n; ++k) {
+          const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
+          x.u(k) = s.u(d);
+          x.v(k) = s.v(d);
+          x.a(k) = s.a(d);
+        }
+        out.f.setZero();
+        out.K.setZero();
+        out.C.setZero();
+        K::evaluate(node, x, call, out, ctx);
+        small_matrix c(nh, nh);
+        Eigen::Matrix<double, Eigen::Dynamic, 1, 0, n, 1> f(nh);
+        double big = 0;
+        for (int i = 0; i < nh; ++i) {
+          const int r = hid[static_cast<std::size_t>(i)];
+          f(i) = out.f(r);
+          big = std::max(big, out.C.row(r).cwiseAbs().maxCoeff());
+          for (int j = 0; j < nh; ++j) c(i, j) = out.C(r, hid[static_cast<std::size_t>(j)]);
+        }
+        const double top = c.cwiseAbs().maxCoeff();
+        if (!(top > 0) || !std::isfinite(big)) break;
+        Eigen::FullPivLU<small_matrix> lu(c);
+        lu.setThreshold(1e-8 * big / top);
+        if (lu.rank() < nh) break;
+        const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, n, 1> dv = lu.solve(-f);
+        if (!dv.allFinite()) break;
+        double change = 0;
+        for (int i = 0; i < nh; ++i) {
+          const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(hid[static_cast<std::size_t>(i)])]);
+          s.v(d) += dv(i);
+          change = std::max(change, std::abs(dv(i)) / (1.0 + std::abs(s.v(d))));
+        }
+        if (change <= 1e-15) break;
+      }
+    }
+  });
 }
 
 /// The rows of the nodes' hidden DOFs (core/node_kind.hpp) in the zero step's
