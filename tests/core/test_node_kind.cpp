@@ -279,7 +279,7 @@ TEST_SUITE("core/node kinds") {
           std::string::npos);
   }
 
-  TEST_CASE("a node whose DOF does not exist, or whose hidden DOF is the ground, is code 110") {
+  TEST_CASE("a node whose DOF does not exist or appears twice, or whose hidden DOF is the ground, is code 110") {
     integral_model m;
     const dof x = m.add_dof("x");
     const auto e1 = pradis_test::error_of([&] { m.add_node<integral_node>({{x.index, 7}}); });
@@ -290,6 +290,10 @@ TEST_SUITE("core/node kinds") {
     REQUIRE(e2.has_value());
     CHECK(e2->number() == 110);
     CHECK(std::string(e2->message()).find("hidden DOF 2 of a INTEGRAL node cannot be the ground") != std::string::npos);
+    const auto e3 = pradis_test::error_of([&] { m.add_node<integral_node>({{x.index, x.index}}); });
+    REQUIRE(e3.has_value());
+    CHECK(e3->number() == 110);
+    CHECK(std::string(e3->message()).find("DOF 'x' is connection 1 and 2 of a INTEGRAL node") != std::string::npos);
     CHECK(m.nodes<integral_node>().empty());
   }
 

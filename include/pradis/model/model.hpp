@@ -26,6 +26,7 @@
 #include "pradis/core/error.hpp"
 #include "pradis/core/type_list.hpp"
 #include "pradis/model/handles.hpp"
+#include "pradis/model/node_connections.hpp"
 #include "pradis/spatial/rotation_node_kind.hpp"
 
 namespace pradis {
@@ -116,33 +117,17 @@ class model {
   }
   /// Adds a node of kind K (a kind that an element type of the model declares) whose
   /// registry takes records (`registry.add(record)`). Every DOF of the record must exist
-  /// in this model, and a hidden one (K::hidden) must be neither the ground nor the
-  /// hidden DOF of another node, of any kind (its row carries one node's equation):
-  /// else code 110, and the model is unchanged.
+  /// in this model and appear once in the record (the ground excepted), and a hidden
+  /// one (K::hidden) must be neither the ground nor the hidden DOF of another node, of
+  /// any kind (its row carries one node's equation): else code 110, and the model is
+  /// unchanged.
   template <NodeKind K>
   void add_node(typename K::record r) {
     static_assert(contains_in<K>(node_kinds{}), "pradis: no element type of this model declares this node kind");
     static_assert(requires(typename K::registry& g) { g.add(std::move(r)); },
                   "pradis: this node kind's registry makes its nodes itself (it has no add(record))");
-    std::vector<char> taken;  // the hidden DOFs of the nodes so far (read only if K has one)
-    for (std::size_t k = 0; k < static_cast<std::size_t>(K::size); ++k) {
-      const int d = r.dofs[k];
-      if (d < 0 || d >= dof_count())
-        throw error(error_code::invalid_model, "DOF " + std::to_string(d) + " of a " + std::string(K::label) +
-                                                   " node does not exist in this model (connection " +
-                                                   std::to_string(k + 1) + ")");
-      if (!K::hidden[k]) continue;
-      if (d == 0)
-        throw error(error_code::invalid_model, "the hidden DOF " + std::to_string(k + 1) + " of a " +
-                                                   std::string(K::label) + " node cannot be the ground");
-      if (taken.empty()) taken = hidden_dofs();
-      if (taken[static_cast<std::size_t>(d)])
-        throw error(error_code::invalid_model, "the hidden DOF " + std::to_string(k + 1) + " of a " +
-                                                   std::string(K::label) + " node, '" + dof_name(d) +
-                                                   "', is already the hidden DOF of a node (one node's equation "
-                                                   "per row)");
-      taken[static_cast<std::size_t>(d)] = 1;
-    }
+    detail::check_node_connections<K>(
+        r, dof_count(), [&](int d) -> const std::string& { return dof_name(d); }, [&] { return hidden_dofs(); });
     std::get<typename K::registry>(registries_).add(std::move(r));
     ++version_;
   }
