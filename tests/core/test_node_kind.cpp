@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <span>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -252,6 +253,28 @@ TEST_SUITE("core/node kinds") {
       }
       CHECK(hv0 == doctest::Approx(x0).epsilon(1e-14));
     }
+  }
+
+  TEST_CASE("an initial velocity set on a hidden DOF that the node's equation replaces is a warning") {
+    model<point_mass, linear_spring, initial_displacement, initial_velocity, integral_marker> m;
+    const dof x = m.add_dof("x"), h = m.add_dof("h");
+    m.add<point_mass>("m", {osc_mass}, x);
+    m.add<linear_spring>("k", {osc_k}, x, m.ground());
+    m.add<initial_displacement>("x0", {1.0}, x);
+    m.add<initial_velocity>("hv", {5.0}, h);  // h' = x(0) = 1, not 5
+    m.add_node<integral_node>({{x.index, h.index}});
+    simulation sim(m);
+    std::ostringstream log;
+    sim.log().to(log);
+    double hv0 = 0;
+    bool first = true;
+    sim.on_output([&](const auto& s) {
+      if (first) hv0 = s.v(h), first = false;
+    });
+    sim.run({.end = 0.01, .smax = 1e-3});
+    CHECK(hv0 == doctest::Approx(1.0).epsilon(1e-14));
+    CHECK(log.str().find("warning: the initial velocity 5 set by 'hv' on DOF 'h' is not kept: it is the hidden DOF "
+                         "of a INTEGRAL node, whose equation gives 1") != std::string::npos);
   }
 
   TEST_CASE("a node's flow or Jacobian entry that is NaN is code 150 in the name of the node") {

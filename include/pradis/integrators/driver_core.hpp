@@ -138,7 +138,7 @@ class driver_core {
     apply_sources(m_, s_, t_);
     build();
     started_ = true;
-    hidden_dof_velocities(m_, asm_, s_, opt_.newton.dabsi, log_);
+    hidden_dof_velocities(m_, asm_, s_, opt_.newton.dabsi, log_, set_v);
     const std::vector<char> kind = initial_derivatives(
         m_, asm_, solver, s_, rhs_, stats_, log_, [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
     warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);

@@ -130,9 +130,12 @@ std::pair<std::vector<std::string>, std::vector<std::string>> apply_initial_cond
 /// equation linear in v, as the rotational norm equation, which gives
 /// q4' = -(q1 q1' + q2 q2' + q3 q3') / q4). A node whose block is singular (below
 /// 1e-8 of its rows' largest dF/dv entry: a rotational node at 180 degrees, or an
-/// equation that does not hold the hidden velocities) keeps them as they are.
+/// equation that does not hold the hidden velocities) keeps them as they are. An
+/// initial velocity that an element set on a hidden DOF (set_v, per DOF: the
+/// setting instance) and that the node's equation replaces is logged as a warning.
 template <class Model, class Assembler>
-void hidden_dof_velocities(const Model& m, const Assembler& as, global_state& s, double dabsi, diagnostics& log) {
+void hidden_dof_velocities(const Model& m, const Assembler& as, global_state& s, double dabsi, diagnostics& log,
+                           const std::vector<std::string>& set_v = {}) {
   element_context ctx("node", "", &log);
   m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
     constexpr int n = K::size;
@@ -148,6 +151,9 @@ void hidden_dof_velocities(const Model& m, const Assembler& as, global_state& s,
         if (K::hidden[kk] && K::rows[kk] && as.equation_of(node.dofs[kk]) >= 0) hid[static_cast<std::size_t>(nh++)] = k;
       }
       if (nh == 0) continue;
+      std::array<double, static_cast<std::size_t>(n)> before{};
+      for (int i = 0; i < nh; ++i)
+        before[static_cast<std::size_t>(i)] = s.v(node.dofs[static_cast<std::size_t>(hid[static_cast<std::size_t>(i)])]);
       for (int it = 0; it < 4; ++it) {
         for (int k = 0; k < n; ++k) {
           const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
@@ -182,6 +188,15 @@ void hidden_dof_velocities(const Model& m, const Assembler& as, global_state& s,
           change = std::max(change, std::abs(dv(i)) / (1.0 + std::abs(s.v(d))));
         }
         if (change <= 1e-15) break;
+      }
+      for (int i = 0; i < nh; ++i) {
+        const int d = node.dofs[static_cast<std::size_t>(hid[static_cast<std::size_t>(i)])];
+        const double v0 = before[static_cast<std::size_t>(i)], v = s.v(d);
+        if (static_cast<std::size_t>(d) < set_v.size() && !set_v[static_cast<std::size_t>(d)].empty() &&
+            std::abs(v - v0) > 1e-12 * (1.0 + std::abs(v0)))
+          log.write("warning: the initial velocity " + detail::num(v0) + " set by '" +
+                    set_v[static_cast<std::size_t>(d)] + "' on DOF '" + m.dof_name(d) + "' is not kept: it is the " +
+                    "hidden DOF of a " + std::string(K::label) + " node, whose equation gives " + detail::num(v));
       }
     }
   });
