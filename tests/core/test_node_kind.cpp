@@ -1,10 +1,10 @@
 // Node kinds (include/pradis/core/node_kind.hpp) as a plug-in point: a kind written
-// here, outside the library, that an element type declares (E::node_kinds) becomes
-// part of the model, and the assembler, the zero step and both drivers run it.
+// outside the library, that an element type declares (E::node_kinds), becomes part of
+// the model, and the assembler, the zero step and both drivers run it.
 //
-// The kind: an "integral node" (x, h) whose hidden DOF h carries the equation
-// h' - x = 0, so h(t) = integral of x from 0 to t. On the oscillator m x'' + k x = 0
-// with x(0) = 0, x'(0) = V, w = sqrt(k / m):
+// The kind: the "integral node" (x, h) of examples/pi_control/integral_node.hpp, whose
+// hidden DOF h carries the equation h' - x = 0, so h(t) = integral of x from 0 to t. On
+// the oscillator m x'' + k x = 0 with x(0) = 0, x'(0) = V, w = sqrt(k / m):
 //   x(t) = (V / w) sin(w t),   h(t) = (V / w^2) (1 - cos(w t))   (exact).
 // The zero step's row of h is d/dt of its equation, h'' = x' (so h''(0) = V).
 
@@ -25,6 +25,7 @@
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/bdf/bdf_simulation.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "pi_control/integral_node.hpp"
 #include "testing/test_support.hpp"
 
 using namespace pradis;
@@ -47,39 +48,9 @@ struct marked_series_spec {
 
 namespace {
 
-struct integral_record {
-  std::array<int, 2> dofs{};  ///< x, h
-};
-struct integral_registry {
-  std::vector<integral_record> nodes;
-  const std::vector<integral_record>& records() const noexcept { return nodes; }
-  void add(integral_record r) { nodes.push_back(r); }
-};
-/// The node equation h' - x = 0 in the row of the hidden h.
-struct integral_node {
-  using record = integral_record;
-  using registry = integral_registry;
-  static constexpr int size = 2;
-  static constexpr std::string_view label = "INTEGRAL";
-  static constexpr std::array<bool, 2> hidden{false, true};
-  static constexpr std::array<bool, 2> rows{false, true};
-  static constexpr std::array<double, 2> start{0, 0};
-  static constexpr bool inertial_block = false;
-  static void evaluate(const record&, const node_values<2>& x, const node_call& call, node_flows<2>& out,
-                       element_context&) {
-    out.f(1) = x.v(1) - x.u(0);
-    if (!call.want_jacobian) return;
-    out.K(1, 0) = -1;
-    out.K(1, 1) = 0;
-    out.C(1, 0) = 0;
-    out.C(1, 1) = 1;
-  }
-  static void zero_step_row(const node_values<2>& x, int, Eigen::Vector2d& row, double& rhs) {
-    row << 0, 1;
-    rhs = -(x.a(1) - x.v(0));
-  }
-};
-static_assert(NodeKind<integral_node>);
+// The kind: examples/pi_control/integral_node.hpp (h' - x = 0 in the row of the hidden h).
+using pradis_examples::integral_node;
+using pradis_examples::integral_registry;
 
 /// The integral node with a fault once x passes 0.5: a flow (Fault 0) or a Jacobian entry dF/du
 /// (Fault 1) is NaN. Its own registry type (each kind of a model keeps its own registry).

@@ -141,6 +141,7 @@ void hidden_dof_velocities(const Model& m, const Assembler& as, global_state& s,
     constexpr int n = K::size;
     using small_matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, n, n>;
     std::array<int, static_cast<std::size_t>(n)> hid{};  // the node's free hidden DOFs with a row of its own
+    std::array<int, static_cast<std::size_t>(n)> dof{};  // their global DOFs
     const node_call call{dabsi, true};
     node_values<n> x;
     node_flows<n> out;
@@ -148,12 +149,14 @@ void hidden_dof_velocities(const Model& m, const Assembler& as, global_state& s,
       int nh = 0;
       for (int k = 0; k < n; ++k) {
         const auto kk = static_cast<std::size_t>(k);
-        if (K::hidden[kk] && K::rows[kk] && as.equation_of(node.dofs[kk]) >= 0) hid[static_cast<std::size_t>(nh++)] = k;
+        if (!K::hidden[kk] || !K::rows[kk] || as.equation_of(node.dofs[kk]) < 0) continue;
+        hid[static_cast<std::size_t>(nh)] = k;
+        dof[static_cast<std::size_t>(nh++)] = node.dofs[kk];
       }
       if (nh == 0) continue;
       std::array<double, static_cast<std::size_t>(n)> before{};
       for (int i = 0; i < nh; ++i)
-        before[static_cast<std::size_t>(i)] = s.v(node.dofs[static_cast<std::size_t>(hid[static_cast<std::size_t>(i)])]);
+        before[static_cast<std::size_t>(i)] = s.v(dof[static_cast<std::size_t>(i)]);
       for (int it = 0; it < 4; ++it) {
         for (int k = 0; k < n; ++k) {
           const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
@@ -183,14 +186,14 @@ void hidden_dof_velocities(const Model& m, const Assembler& as, global_state& s,
         if (!dv.allFinite()) break;
         double change = 0;
         for (int i = 0; i < nh; ++i) {
-          const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(hid[static_cast<std::size_t>(i)])]);
+          const auto d = static_cast<Eigen::Index>(dof[static_cast<std::size_t>(i)]);
           s.v(d) += dv(i);
           change = std::max(change, std::abs(dv(i)) / (1.0 + std::abs(s.v(d))));
         }
         if (change <= 1e-15) break;
       }
       for (int i = 0; i < nh; ++i) {
-        const int d = node.dofs[static_cast<std::size_t>(hid[static_cast<std::size_t>(i)])];
+        const int d = dof[static_cast<std::size_t>(i)];
         const double v0 = before[static_cast<std::size_t>(i)], v = s.v(d);
         if (static_cast<std::size_t>(d) < set_v.size() && !set_v[static_cast<std::size_t>(d)].empty() &&
             std::abs(v - v0) > 1e-12 * (1.0 + std::abs(v0)))
