@@ -289,7 +289,7 @@ TEST_SUITE("core/checkpoint") {
       std::string bad = full;
       const std::uint32_t v = checkpoint_version + 1;
       std::memcpy(bad.data() + 8, &v, sizeof v);
-      refused(bad, "checkpoint version 4 cannot be read; this pradis reads version 3");
+      refused(bad, "checkpoint version 5 cannot be read; this pradis reads version 4");
       refused("PRADCK01" + full.substr(8), "checkpoint version 1");
     }
     // Bytes after the checksum are not read (a session appends its record there).

@@ -248,6 +248,39 @@ TEST_SUITE("core/node kinds") {
                          "of a INTEGRAL node, whose equation gives 1") != std::string::npos);
   }
 
+  TEST_CASE("a checkpoint carries the nodes: refused by the model without the node, continued by the same model") {
+    dof x, h;
+    integral_model a = oscillator(x, h);
+    simulation sa(a);
+    sa.run({.end = 1.0, .smax = 1e-3});
+    std::stringstream ck;
+    sa.save_checkpoint(ck);
+    sa.run({.end = 2.0, .smax = 1e-3});
+    // The same elements and DOFs without the integral node: another model.
+    integral_model b;
+    const dof bx = b.add_dof("x");
+    b.add_dof("h");
+    b.add<point_mass>("m", {osc_mass}, bx);
+    b.add<linear_spring>("k", {osc_k}, bx, b.ground());
+    b.add<initial_velocity>("v0", {osc_v0}, bx);
+    simulation sb(b);
+    CHECK(sb.model_fingerprint() != sa.model_fingerprint());
+    std::stringstream in_b(ck.str());
+    const auto e = pradis_test::error_of([&] { sb.load_checkpoint(in_b); });
+    REQUIRE(e.has_value());
+    CHECK(e->number() == 160);
+    CHECK(std::string(e->message()).find("different model") != std::string::npos);
+    // The same model continues bit for bit.
+    dof cx, ch;
+    integral_model c = oscillator(cx, ch);
+    simulation sc(c);
+    std::stringstream in_c(ck.str());
+    sc.load_checkpoint(in_c);
+    sc.run({.end = 2.0, .smax = 1e-3});
+    CHECK(sc.u(ch) == sa.u(h));
+    CHECK(sc.u(cx) == sa.u(x));
+  }
+
   TEST_CASE("a node's flow or Jacobian entry that is NaN is code 150 in the name of the node") {
     // x = 0.75 sin(2 t) passes 0.5 at t = 0.37: the fault appears during the run, not at the zero step.
     auto run = [&]<int Fault>(std::integral_constant<int, Fault>) {

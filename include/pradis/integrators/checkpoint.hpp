@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The checkpoint format of pradis::simulation (version 3) and the model
+/// The checkpoint format of pradis::simulation (version 4) and the model
 /// fingerprint it carries.
 ///
 /// Layout: the 8-byte magic "PRADCKPT", the format version (uint32), the
@@ -36,8 +36,9 @@ namespace pradis {
 
 /// The checkpoint format version written and read by this pradis.
 /// Version 3 added the DOF classes of the zero step (checkpoint_data::dof_classes); a version-2 checkpoint is refused
-/// (a restored run needs them to leave index-3 multipliers out of its error tests).
-inline constexpr std::uint32_t checkpoint_version = 3;
+/// (a restored run needs them to leave index-3 multipliers out of its error tests). Version 4 has the same fields;
+/// its model fingerprint also covers the model's nodes (node kinds), so a version-3 checkpoint is refused as well.
+inline constexpr std::uint32_t checkpoint_version = 4;
 
 namespace detail {
 
@@ -157,7 +158,8 @@ class checkpoint_reader {
 }  // namespace detail
 
 /// A fingerprint of a model's topology: DOF count, element types, instance
-/// names, connections, parameter counts and vector sizes (FNV-1a, 64 bit).
+/// names, connections, parameter counts and vector sizes, and the nodes of each
+/// node kind (its label, their count and DOFs) (FNV-1a, 64 bit).
 template <class Model>
 std::uint64_t model_fingerprint(const Model& m) {
   std::uint64_t h = 1469598103934665603ull;
@@ -174,6 +176,16 @@ std::uint64_t model_fingerprint(const Model& m) {
       mix(&in.work_size, sizeof in.work_size);
       mix(&in.state_size, sizeof in.state_size);
     }
+  });
+  m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+    mix(K::label.data(), K::label.size());
+    const std::size_t count = nodes.size();
+    mix(&count, sizeof count);
+    for (const auto& node : nodes)
+      for (std::size_t k = 0; k < static_cast<std::size_t>(K::size); ++k) {
+        const int d = node.dofs[k];
+        mix(&d, sizeof d);
+      }
   });
   return h;
 }
@@ -193,7 +205,7 @@ struct checkpoint_data {
   std::vector<double> dof_classes;
 };
 
-/// Writes a checkpoint (version 3) of a model with the given fingerprint.
+/// Writes a checkpoint (version 4) of a model with the given fingerprint.
 inline void write_checkpoint(std::ostream& os, std::uint64_t fingerprint, const checkpoint_data& c) {
   detail::checkpoint_writer w;
   w.put_int(static_cast<std::int64_t>(fingerprint));
