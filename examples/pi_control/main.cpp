@@ -20,7 +20,7 @@
 
 #include <pradis/pradis.hpp>
 
-#include "pi_control/pi_scene.hpp"
+#include "pi_scene.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include <pradis/pradis.hpp>
 
-#include "pi_control/integral_node.hpp"
+#include "integral_node.hpp"
 
 namespace pradis_examples {
 

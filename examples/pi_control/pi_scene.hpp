@@ -4,8 +4,8 @@
 
 #include <pradis/pradis.hpp>
 
-#include "pi_control/pi_controller.hpp"
-#include "pi_control/pi_exact.hpp"
+#include "pi_controller.hpp"
+#include "pi_exact.hpp"
 
 namespace pradis_examples {
 
