@@ -10,7 +10,8 @@
 // all solvers in one process. pradis's series: every one-step scheme under error
 // control and with fixed steps, the BDF driver ("BDF"), on topx and chain the
 // BDF driver in its plain index-3 form ("BDF-index3"), on topx the top with its node
-// at the tip and no joint ("BDF-pivot"), and on the free body, top and
+// at the tip and no joint ("BDF-pivot") and the tip held by a ground pivot, SPH3X's
+// reduced form without multipliers ("BDF-gpivot"), and on the free body, top and
 // topx with the rate form ("BDF-rates") and with the kept Newton matrix not turned
 // ("BDF-unturned"), and on the free body with it turned in the global frame only
 // ("BDF-global"). Tolerance sweeps (rtol = atol):
@@ -522,6 +523,8 @@ struct bdf_method {
   pradis::bdf_options options{};
   /// topx only: the top with its node at the tip and no joint (top_parameters::pivot).
   bool pivot = false;
+  /// topx only: the tip held by a ground pivot, SPH3X's reduced form (top_parameters::ground_pivot).
+  bool ground_pivot = false;
 };
 
 /// Runs f(sim) on a simulation of m with the scheme (or the BDF driver).
@@ -617,7 +620,7 @@ run_result run_pradis(const problem& pb, Scheme scheme, const pradis_setting& st
   } else if (pb.name == "topx") {
     pradis_examples::top_parameters tp;
     tp.exact_joint = true;
-    if constexpr (std::is_same_v<Scheme, bdf_method>) tp.pivot = scheme.pivot;
+    if constexpr (std::is_same_v<Scheme, bdf_method>) tp.pivot = scheme.pivot, tp.ground_pivot = scheme.ground_pivot;
     pradis_examples::spinning_top t(tp);
     with_simulation(t.m, scheme, [&](auto& sim) { finish_rotation(sim, t.r); });
   } else if (pb.name == "chain") {
@@ -1158,6 +1161,7 @@ struct bench {
       // topx also as the motion about a fixed point: the node at the tip, no joint
       // (top_parameters::pivot), the formulation the peers integrate.
       if (pb.name == "topx") pradis_sweeps(pb, bdf_method{.pivot = true}, "BDF-pivot", false);
+      if (pb.name == "topx") pradis_sweeps(pb, bdf_method{.ground_pivot = true}, "BDF-gpivot", false);
       // The rotational problems also with BDF's rotational nodes in the rate form and
       // with the kept Newton matrix not turned (docs/bdf.md, "Rotational nodes", "Newton").
       if (pb.name == "freebody" || pb.name == "top" || pb.name == "topx") {

@@ -24,6 +24,9 @@ struct top_parameters {
   /// No joint: BODY3's reference point is the tip itself (translations grounded, centre of mass
   /// l along body Z from it) and the weight is F3A at the centre of mass (overrides exact_joint).
   bool pivot = false;
+  /// With exact_joint: the tip held by a ground pivot, SPH3X's reduced form without multipliers
+  /// (pradis::elements::add_ground_pivot; the body's translations follow its rotation).
+  bool ground_pivot = false;
 };
 
 /// A rigid body (BODY3) symmetric about its Z axis, its tip held at the origin by a
@@ -43,6 +46,7 @@ struct spinning_top {
   double k;           ///< joint penalty stiffness [N/m]
   bool exact_joint;   ///< SPH3X instead of SPH3
   bool pivot;         ///< node at the tip, no joint
+  bool ground_pivot;  ///< with exact_joint: a ground pivot instead of SPH3X
 
   using model_type =
       pradis::model<pradis::elements::rigid_body, pradis::elements::spherical_joint,
@@ -60,7 +64,7 @@ struct spinning_top {
 
   explicit spinning_top(const top_parameters& p = {})
       : mass(p.mass), l(p.l), j1(p.j1), j3(p.j3), w3(p.w3), theta0(p.theta0), k(p.k), exact_joint(p.exact_joint),
-        pivot(p.pivot) {
+        pivot(p.pivot), ground_pivot(p.ground_pivot) {
     using namespace pradis::elements;
     const pradis::dof G = m.ground();
     const pradis::spatial::vec3 a = axis0();
@@ -75,7 +79,9 @@ struct spinning_top {
       m.add<rigid_body>("top", {mass, j1, j1, j3, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
       // Joint point A: the origin (ground); B: the tip, l below the centre of mass along body Z.
       const pradis::elements::detail::joint_geometry tip{0, 0, 0, 0, 0, 0, l * a.x(), l * a.y(), l * a.z(), 0, 0, -l};
-      if (exact_joint)
+      if (exact_joint && ground_pivot)
+        pradis::elements::add_ground_pivot(m, "tip", tip, x[0], x[1], x[2], r);
+      else if (exact_joint)
         m.add<exact_spherical_joint>("tip", {tip}, G, G, G, G, G, G, x[0], x[1], x[2], r);
       else
         m.add<spherical_joint>("tip", {tip, k, joint_damping()}, G, G, G, G, G, G, x[0], x[1], x[2], r);

@@ -332,14 +332,14 @@ TEST_SUITE("core/node kinds") {
     const auto e1 = pradis_test::error_of([&] { m.add_node<integral_node>({{y.index, h.index}}); });
     REQUIRE(e1.has_value());
     CHECK(e1->number() == 110);
-    CHECK(std::string(e1->message()).find("hidden DOF 2 of a INTEGRAL node, 'h', is already the hidden DOF of a "
-                                          "node") != std::string::npos);
+    CHECK(std::string(e1->message()).find("hidden DOF 2 of a INTEGRAL node, 'h', is already the hidden or slaved "
+                                          "DOF of a node") != std::string::npos);
     // The same for the hidden q4 of a rotational node (another kind).
     const rotation_node r = m.add_rotation_node("r");
     const auto e2 = pradis_test::error_of([&] { m.add_node<integral_node>({{y.index, r.q4.index}}); });
     REQUIRE(e2.has_value());
     CHECK(e2->number() == 110);
-    CHECK(std::string(e2->message()).find("'r.q4', is already the hidden DOF") != std::string::npos);
+    CHECK(std::string(e2->message()).find("'r.q4', is already the hidden or slaved DOF") != std::string::npos);
     CHECK(m.nodes<integral_node>().size() == 1);
   }
 

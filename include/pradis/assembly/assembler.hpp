@@ -17,10 +17,11 @@
 #include <utility>
 #include <vector>
 
+#include "pradis/assembly/slaved_rows.hpp"
 #include "pradis/core/element.hpp"
+#include "pradis/core/node_kind.hpp"
 #include "pradis/linalg/sparsity.hpp"
 #include "pradis/model/model.hpp"
-#include "pradis/core/node_kind.hpp"
 
 namespace pradis {
 
@@ -112,7 +113,16 @@ class assembler<model<Es...>> {
             if (er >= 0 && ec >= 0) entries.emplace_back(er, ec);
           }
     });
+    const auto eq_of = [&](int d) { return eq_of_dof_[static_cast<std::size_t>(d)]; };
+    m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+      if constexpr (SlavingNodeKind<K>)
+        detail::slaved_table<K>::add_entries(
+            nodes, eq_of, [&](int d) -> const std::string& { return m.dof_name(d); }, entries);
+    });
     pattern_ = linalg::sparsity_pattern::from_entries(ne, entries);
+    m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+      if constexpr (SlavingNodeKind<K>) std::get<detail::slaved_table<K>>(slaved_).build(nodes, eq_of, pattern_);
+    });
     m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
       constexpr int n = K::size;
       auto& slots = std::get<node_slot_table<K>>(node_slots_).slots;
@@ -220,6 +230,9 @@ class assembler<model<Es...>> {
     std::size_t ti = 0;
     const auto& maps = partial_rows_ && !info.want_jacobian && info.jacobian_types ? partial_maps_ : maps_;
     (evaluate_type<Es>(m, s, c, info, ctx, std::get<index_of<Es, Es...>()>(maps), ti++), ...);
+    m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+      if constexpr (SlavingNodeKind<K>) carry_slaved<K>(m, nodes, s, c, info, ctx);
+    });
     m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
       evaluate_nodes<K>(m, nodes, std::get<node_slot_table<K>>(node_slots_).slots, s, c, info, ctx);
     });
@@ -431,6 +444,17 @@ class assembler<model<Es...>> {
       if (check != 0.0) node_not_finite<K>(m, nodes[i], out, ctx);
     }
   }
+  /// The rows of the slaved DOFs of the nodes of kind K carried to their nodes' other rows
+  /// (assembly/slaved_rows.hpp); the Jacobian's only with a full one (info.want_jacobian).
+  template <class K>
+  void carry_slaved(const model_type& m, const std::vector<typename K::record>& nodes, const global_state& s,
+                    const jacobian_coefficients& c, const call_info& info, element_context& ctx) {
+    const bool keep = keep_blocks_ && info.want_jacobian;
+    std::vector<double>* kept[3] = {keep ? &k_values_ : nullptr, keep ? &c_values_ : nullptr,
+                                    keep ? &m_values_ : nullptr};
+    detail::carry_slaved_rows<K>(m, nodes, std::get<detail::slaved_table<K>>(slaved_), s, c.cu, info.want_jacobian,
+                                 residual_, abs_sum_, values_, kept, ctx);
+  }
   /// Code 150 for a node whose flows or Jacobian entries are not finite.
   template <class K>
   [[noreturn]] static void node_not_finite(const model_type& m, const typename K::record& node,
@@ -453,13 +477,15 @@ class assembler<model<Es...>> {
   struct node_slot_table {
     std::vector<int> slots;
   };
-  template <class L>
-  struct slot_tables;
-  template <class... Ks>
-  struct slot_tables<type_list<Ks...>> {
-    using type = std::tuple<node_slot_table<Ks>...>;
+  /// std::tuple<T<K>...> over the model's node kinds.
+  template <template <class> class T, class L>
+  struct per_kind;
+  template <template <class> class T, class... Ks>
+  struct per_kind<T, type_list<Ks...>> {
+    using type = std::tuple<T<Ks>...>;
   };
-  typename slot_tables<node_kinds>::type node_slots_;
+  typename per_kind<node_slot_table, node_kinds>::type node_slots_;
+  typename per_kind<detail::slaved_table, node_kinds>::type slaved_;  // used for slaving kinds only
   std::vector<int> eq_of_dof_, dof_of_eq_;
   linalg::sparsity_pattern pattern_;
   std::tuple<scatter_map<Es>...> maps_;

@@ -24,13 +24,32 @@
 ///   named). At the zero step it also gives the hidden DOFs' start velocities: those
 ///   that make the flows of the hidden rows vanish, where their dF/dv block is regular
 ///   (detail::hidden_dof_velocities).
-/// - K::zero_step_row(values, k, row, rhs): at the zero step (consistent
+/// - K::zero_step_row([record,] values, k, row, rhs): at the zero step (consistent
 ///   initial derivatives) the unknown of a hidden DOF k is its acceleration: the
 ///   row of d/dt of the node's equation over the accelerations of the node's DOFs
 ///   and its right-hand side.
 /// - K::inertial_block: a non-hidden DOF of the node is inertial at the zero step
 ///   when the assembled inertia block has an entry anywhere in the node's columns
 ///   of its row (not only on the diagonal).
+///
+/// Optional, for a kind whose equation slaves DOFs to the node's others (an explicit
+/// constraint u_k = g_k(u), as a body point held at a ground point: the node at the
+/// pivot, spatial/ground_pivot.hpp), without a multiplier:
+/// - K::slaved[k]: DOF k is slaved. Its row is the node's equation
+///   c_k(u) = u_k - g_k(u) = 0 (K::rows[k] true, dF_k/du_k = 1, no dF/dv), and the
+///   element flows of its row are carried to the node's other rows: row j gets
+///   T(j, k) f_k, which takes the constraint force -f_k into the node's equations
+///   (so T is the transpose of the map from a virtual displacement of the node's
+///   DOFs to the slaved point's: for a point on a rotational node, -[rho x] on q1..q3).
+///   Like a hidden DOF, a slaved DOF belongs to one node's equation, is not counted as
+///   massless, and at the zero step its acceleration is the unknown of
+///   K::zero_step_row; its position and velocity are set from c = 0 and dc/dt = 0.
+/// - K::carry(record, values, w, T, D): the weights T (size x size; columns of slaved
+///   DOFs used) and, if D is not null, D(j, i) = d(sum_k T(j, k) w_k) / du_i at fixed w,
+///   w the element flows of the slaved rows (the part of the carried flows' dF/du that
+///   the element blocks do not give). Never allocates.
+/// - K::slaved_rate(record, values, r) (optional): r_k = dc_k/dt for the slaved k (else
+///   the kernel takes sum_j dc_k/du_j v_j from K::evaluate's block).
 
 #include <Eigen/Core>
 #include <array>
@@ -78,8 +97,44 @@ concept NodeKind = requires {
               node_flows<K::size>& out, element_context& ctx, Eigen::Matrix<double, K::size, 1>& row, double& rhs) {
   { r.dofs[0] } -> std::convertible_to<int>;
   K::evaluate(r, x, c, out, ctx);
+} && (requires(const node_values<K::size>& x, Eigen::Matrix<double, K::size, 1>& row, double& rhs) {
   K::zero_step_row(x, 0, row, rhs);
-};
+} || requires(const typename K::record& r, const node_values<K::size>& x, Eigen::Matrix<double, K::size, 1>& row,
+              double& rhs) { K::zero_step_row(r, x, 0, row, rhs); });
+
+/// Calls K::zero_step_row with the node's record if it takes one.
+template <class K>
+void zero_step_row_of(const typename K::record& r, const node_values<K::size>& x, int k,
+                      Eigen::Matrix<double, K::size, 1>& row, double& rhs) {
+  if constexpr (requires { K::zero_step_row(r, x, k, row, rhs); })
+    K::zero_step_row(r, x, k, row, rhs);
+  else
+    K::zero_step_row(x, k, row, rhs);
+}
+
+/// Whether a node kind slaves DOFs (K::slaved, see the file comment).
+template <class K>
+concept SlavingNodeKind =
+    NodeKind<K> && requires(const typename K::record& r, const node_values<K::size>& x,
+                            const Eigen::Matrix<double, K::size, 1>& w, Eigen::Matrix<double, K::size, K::size>& t) {
+      { K::slaved } -> std::convertible_to<std::array<bool, static_cast<std::size_t>(K::size)>>;
+      K::carry(r, x, w, t, &t);
+    };
+
+/// Whether DOF k of a node of kind K is slaved (false for a kind without K::slaved).
+template <class K>
+constexpr bool slaved_dof(int k) {
+  if constexpr (SlavingNodeKind<K>)
+    return K::slaved[static_cast<std::size_t>(k)];
+  else
+    return false;
+}
+
+/// Whether DOF k of a node of kind K belongs to the node's equation: hidden or slaved.
+template <class K>
+constexpr bool owned_dof(int k) {
+  return K::hidden[static_cast<std::size_t>(k)] || slaved_dof<K>(k);
+}
 
 /// The node kinds an element type E brings into every model that lists it: E::node_kinds
 /// (a type_list of node kinds) if E declares it, else none.

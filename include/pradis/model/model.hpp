@@ -127,7 +127,7 @@ class model {
     static_assert(requires(typename K::registry& g) { g.add(std::move(r)); },
                   "pradis: this node kind's registry makes its nodes itself (it has no add(record))");
     detail::check_node_connections<K>(
-        r, dof_count(), [&](int d) -> const std::string& { return dof_name(d); }, [&] { return hidden_dofs(); });
+        r, dof_count(), [&](int d) -> const std::string& { return dof_name(d); }, [&] { return hidden_dofs(true); });
     std::get<typename K::registry>(registries_).add(std::move(r));
     ++version_;
   }
@@ -146,13 +146,14 @@ class model {
           if (K::hidden[k] && node.dofs[k] >= from) u(static_cast<Eigen::Index>(node.dofs[k])) = K::start[k];
     });
   }
-  /// Per DOF: whether it is a hidden DOF of a node (K::hidden).
-  std::vector<char> hidden_dofs() const {
+  /// Per DOF: whether it is a hidden DOF of a node (K::hidden), with `slaved` also
+  /// whether it is a slaved DOF of a node (K::slaved; core/node_kind.hpp).
+  std::vector<char> hidden_dofs(bool slaved = false) const {
     std::vector<char> h(static_cast<std::size_t>(dof_count()), 0);
     for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
       for (const auto& node : nodes)
         for (std::size_t k = 0; k < static_cast<std::size_t>(K::size); ++k)
-          if (K::hidden[k]) h[static_cast<std::size_t>(node.dofs[k])] = 1;
+          if (slaved ? owned_dof<K>(static_cast<int>(k)) : K::hidden[k]) h[static_cast<std::size_t>(node.dofs[k])] = 1;
     });
     return h;
   }

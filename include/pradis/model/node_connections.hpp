@@ -13,9 +13,10 @@
 namespace pradis::detail {
 
 /// Throws code 110 unless every DOF of r exists (0 .. dof_count - 1) and appears once
-/// in r (the ground excepted), and every hidden DOF (K::hidden) is neither the ground
-/// nor already a hidden DOF of a node (`hidden()`: per DOF, whether it is one; called
-/// only for a kind with a hidden DOF). `name(d)` is the name of DOF d.
+/// in r (the ground excepted), and every DOF the node's equation owns (K::hidden or
+/// K::slaved) is neither the ground nor already owned by a node (`hidden()`: per DOF,
+/// whether it is a hidden or slaved DOF of a node; called only for a kind with one).
+/// `name(d)` is the name of DOF d.
 template <NodeKind K, class Name, class Hidden>
 void check_node_connections(const typename K::record& r, int dof_count, const Name& name, const Hidden& hidden) {
   const std::string label(K::label);
@@ -31,16 +32,17 @@ void check_node_connections(const typename K::record& r, int dof_count, const Na
         throw error(error_code::invalid_model, "DOF '" + name(d) + "' is connection " + std::to_string(j + 1) +
                                                    " and " + std::to_string(k + 1) + " of a " + label +
                                                    " node (a DOF other than the ground appears once per node)");
-    if (!K::hidden[k]) continue;
+    if (!owned_dof<K>(static_cast<int>(k))) continue;
+    const std::string what = K::hidden[k] ? "hidden" : "slaved";
     if (d == 0)
       throw error(error_code::invalid_model,
-                  "the hidden DOF " + std::to_string(k + 1) + " of a " + label + " node cannot be the ground");
+                  "the " + what + " DOF " + std::to_string(k + 1) + " of a " + label + " node cannot be the ground");
     if (taken.empty()) taken = hidden();
     if (taken[static_cast<std::size_t>(d)])
-      throw error(error_code::invalid_model, "the hidden DOF " + std::to_string(k + 1) + " of a " + label +
+      throw error(error_code::invalid_model, "the " + what + " DOF " + std::to_string(k + 1) + " of a " + label +
                                                  " node, '" + name(d) +
-                                                 "', is already the hidden DOF of a node (one node's equation "
-                                                 "per row)");
+                                                 "', is already the hidden or slaved DOF of a node (one node's "
+                                                 "equation per row)");
     taken[static_cast<std::size_t>(d)] = 1;
   }
 }

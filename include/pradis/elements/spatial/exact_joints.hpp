@@ -15,6 +15,7 @@
 #include "pradis/core/element.hpp"
 #include "pradis/elements/spatial/exact_constraint_rows.hpp"
 #include "pradis/elements/spatial/exact_joint_shell.hpp"
+#include "pradis/elements/spatial/ground_pivot.hpp"
 #include "pradis/elements/spatial/joints.hpp"
 
 /// The parameter lines 13..18 of UNI3X (the cross axes).
@@ -44,6 +45,8 @@ using spherical_kind = spherical_kind_t<>;
 /// SPH3X's rows: the point constraint p_B - p_A = 0 (multipliers: the force).
 template <class>
 struct spherical_kind_t {
+  /// Models that list SPH3X can hold ground pivots, SPH3X to the ground in reduced form (ground_pivot.hpp).
+  using node_kinds = type_list<ground_pivot_kind>;
   static constexpr pradis::passport passport{
       .name = "SPH3X", .ext = 12, .ent = 5, .par = 12, .wrk = 4, .adr = 1, .ign = 3};
   static constexpr element_help help{

@@ -148,13 +148,21 @@ void solve_corrections(const Solver& solver, std::vector<double>& b1, std::vecto
 /// the element types that own index-3 multipliers only, enough for G. `failure` receives a
 /// singular matrix or situation that ended the last attempt. With rf, the velocity
 /// rows of its nodes in y_p, yp_p and dy are rates (rate_form.hpp).
-template <class Assembler, class Solver, class Evaluate>
+///
+/// Slaved DOFs (core/node_kind.hpp, K::slaved), when `slaved`: after every update of the
+/// state, `project(s, nullptr, 0)` puts their positions on their nodes' equations
+/// (exactly: c = u_k - g_k), and `project(s, &rhs, 1 / c_J)` sets their rows' right-hand
+/// sides to the velocity constraint's, -(dc/dt) / c_J (the rows of J are dc/du / c_J), so
+/// that the corrections meet dc/dt = 0. With the position constraint's own residual there,
+/// its roundoff (~1e-16 |u|) reached the velocities as c times it, above DABSX at steps
+/// below ~1e-9 s.
+template <class Assembler, class Solver, class Project, class Evaluate>
 bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::VectorXd& y_p, const Eigen::VectorXd& yp_p,
              double c, double c_last, const Eigen::VectorXd& w, const newton_options& nw, double eps,
              double window, double turn_refresh, newton_memory& mem, std::vector<double>& rhs, Eigen::VectorXd& dy,
              run_statistics& stats,
              std::optional<error>& failure, index2_stabilisation* st, const rate_form* rf, rotated_jacobian* rj,
-             Evaluate&& evaluate) {
+             bool slaved, Project&& project, Evaluate&& evaluate) {
   const int ne = as.equations();
   const jacobian_coefficients jc{1 / c, 1, c};
   bool refresh = !mem.valid;
@@ -188,6 +196,7 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
     if (rf) rf->predicted_velocities(s, ne, y_p);
     if (st) std::fill(st->shift.begin(), st->shift.end(), 0.0);
     complete_state(as, s, y_p, yp_p, c, st, rf);
+    if (slaved) project(s, nullptr, 0.0);
     double oldnrm = 0;
     bool converged = false;
     try {
@@ -208,6 +217,7 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
           refresh = reform = false;
         }
         for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
+        if (slaved) project(s, &rhs, 1 / mem.c_jac);
         if (st) stabilised_rows(as, s, *st, fresh_g, c, mem.c_jac, rhs);
         if (rj) {
           rj->to_reference(s, rhs);
@@ -235,6 +245,7 @@ bool correct(Assembler& as, Solver& solver, global_state& s, const Eigen::Vector
         }
         if (!finite) break;
         complete_state(as, s, y_p, yp_p, c, st, rf);
+        if (slaved) project(s, nullptr, 0.0);
         if (rf) rf->corrections(s, ne, dy);
         const double delnrm = wrms(dy, w);
         if (m == 0) {

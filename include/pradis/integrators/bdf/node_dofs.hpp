@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "pradis/core/element.hpp"
+#include "pradis/core/node_kind.hpp"
 #include "pradis/model/handles.hpp"
 
 namespace pradis::bdf_detail {
@@ -25,6 +26,18 @@ struct free_rotation_node {
   std::array<int, 4> eq{};   ///< their equations
   int node = -1;             ///< index among the model's rotational nodes
 };
+
+/// Per DOF: whether it is a slaved DOF of a node (core/node_kind.hpp, K::slaved).
+template <class Model>
+std::vector<char> slaved_dofs(const Model& m) {
+  std::vector<char> out(static_cast<std::size_t>(m.dof_count()), 0);
+  m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+    for (const auto& node : nodes)
+      for (int k = 0; k < K::size; ++k)
+        if (slaved_dof<K>(k)) out[static_cast<std::size_t>(node.dofs[static_cast<std::size_t>(k)])] = 1;
+  });
+  return out;
+}
 
 /// The rotational nodes whose four DOFs are free equations of `as`.
 template <class Assembler>
@@ -77,6 +90,16 @@ std::vector<char> body_fixed_nodes(const Model& m) {
         if (!(in_slot && body)) fixed[it->second] = 0;
       }
     }
+  });
+  // A node that a slaving node kind carries flows to (core/node_kind.hpp, K::slaved) gets
+  // them in global axes (a joint force at an offset): not body-fixed.
+  m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& knodes) {
+    if constexpr (SlavingNodeKind<K>)
+      for (const auto& kn : knodes)
+        for (const int d : kn.dofs) {
+          const auto it = node_of.find(d);
+          if (it != node_of.end()) fixed[it->second] = 0;
+        }
   });
   for (std::size_t i = 0; i < nodes.size(); ++i) fixed[i] = fixed[i] && seen[i];
   return fixed;

@@ -1,0 +1,216 @@
+#pragma once
+/// \file
+/// The rows of slaved DOFs (core/node_kind.hpp, K::slaved): what the assembler does
+/// for a node whose equation slaves some of its DOFs to the others. After the
+/// elements are assembled, the flows of a slaved row and its entries of
+/// cu dF/du + cv dF/dv + ca dF/da (in every column) are carried to the node's other
+/// rows with the weights T(j, k) of K::carry, the derivative of the weights
+/// (K::carry's D) is added to the node's block, and the slaved row is cleared;
+/// the node's own equation (assembler::evaluate_nodes) then fills it with the
+/// constraint c_k = 0. This is the elimination of the constraint's multiplier
+/// lambda_k = -f_k: the model keeps its DOFs, the slaved ones follow the others.
+/// Tables are made once per topology (build); the carry never allocates.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "pradis/core/diagnostics.hpp"
+#include "pradis/core/element.hpp"
+#include "pradis/core/error.hpp"
+#include "pradis/core/node_kind.hpp"
+#include "pradis/linalg/sparsity.hpp"
+
+namespace pradis::detail {
+
+/// The carry tables of the nodes of one slaving kind K.
+template <class K>
+struct slaved_table {
+  static constexpr int n = K::size;
+  /// Per node: [first[i], first[i + 1]) in `entries`, groups of n + 2 ints: the slaved DOF k, the slot of an
+  /// entry of its row, then the slots of the same column in the node's rows 0..n-1 (-1: none, or k itself).
+  std::vector<int> first, entries;
+  /// Per node: the n x n slots of the node's block (row-major; -1 where a DOF has no equation).
+  std::vector<int> block;
+
+  /// The pattern entries the carry needs: the node's other rows get every column of a slaved row.
+  /// `entries` holds the (row, column) equation pairs of the elements and nodes so far; the new
+  /// pairs are appended. Throws code 110 for a slaved DOF without an equation (prescribed by a
+  /// source): it cannot be both.
+  template <class Nodes, class EqOf, class Name>
+  static void add_entries(const Nodes& nodes, const EqOf& eq_of, const Name& name,
+                          std::vector<std::pair<int, int>>& entries) {
+    const std::size_t m = entries.size();
+    for (const auto& node : nodes)
+      for (int k = 0; k < n; ++k) {
+        if (!slaved_dof<K>(k)) continue;
+        const int ek = eq_of(node.dofs[static_cast<std::size_t>(k)]);
+        if (ek < 0)
+          throw error(error_code::invalid_model, "the slaved DOF '" + name(node.dofs[static_cast<std::size_t>(k)]) +
+                                                     "' of a " + std::string(K::label) +
+                                                     " node is prescribed by a source (a DOF follows either its "
+                                                     "node's equation or a source, not both)");
+        for (std::size_t e = 0; e < m; ++e) {
+          if (entries[e].first != ek) continue;
+          for (int j = 0; j < n; ++j) {
+            const int ej = eq_of(node.dofs[static_cast<std::size_t>(j)]);
+            if (ej >= 0 && !slaved_dof<K>(j)) entries.emplace_back(ej, entries[e].second);
+          }
+        }
+      }
+  }
+
+  /// The tables for the final pattern.
+  template <class Nodes, class EqOf>
+  void build(const Nodes& nodes, const EqOf& eq_of, const linalg::sparsity_pattern& p) {
+    first.assign(1, 0);
+    entries.clear();
+    block.assign(nodes.size() * static_cast<std::size_t>(n * n), -1);
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const auto& d = nodes[i].dofs;
+      for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) {
+          const int er = eq_of(d[static_cast<std::size_t>(r)]), ec = eq_of(d[static_cast<std::size_t>(c)]);
+          if (er >= 0 && ec >= 0) block[i * n * n + static_cast<std::size_t>(r * n + c)] = p.find(er, ec);
+        }
+      for (int k = 0; k < n; ++k) {
+        if (!slaved_dof<K>(k)) continue;
+        const int ek = eq_of(d[static_cast<std::size_t>(k)]);
+        for (int q = p.row_ptr[static_cast<std::size_t>(ek)]; q < p.row_ptr[static_cast<std::size_t>(ek) + 1]; ++q) {
+          entries.push_back(k);
+          entries.push_back(q);
+          const int col = p.col[static_cast<std::size_t>(q)];
+          for (int j = 0; j < n; ++j) {
+            const int ej = eq_of(d[static_cast<std::size_t>(j)]);
+            entries.push_back(ej >= 0 && !slaved_dof<K>(j) ? p.find(ej, col) : -1);
+          }
+        }
+      }
+      first.push_back(static_cast<int>(entries.size()));
+    }
+  }
+};
+
+/// Carries the slaved rows of the nodes of kind K of model m (see the file comment). `values` and
+/// the kept blocks (kept: K, C, M, or null) are in the pattern's order; `jac`: the Jacobian was
+/// assembled in full. A weight or derivative that is not finite is code 150 in the name of the
+/// node (K::label and its first slaved DOF).
+template <class K, class Model, class Nodes, class State>
+void carry_slaved_rows(const Model& m, const Nodes& nodes, const slaved_table<K>& t, const State& s, double cu,
+                       bool jac, Eigen::VectorXd& residual, Eigen::VectorXd& abs_sum, std::vector<double>& values,
+                       std::vector<double>* kept[3], element_context& ctx) {
+  constexpr int n = K::size;
+  const auto fail = [&](const auto& node) {
+    int k = 0;
+    while (k + 1 < n && !slaved_dof<K>(k)) ++k;
+    const std::string& dof = m.dof_name(node.dofs[static_cast<std::size_t>(k)]);
+    ctx.set_identity(K::label, dof);
+    ctx.fail(error_code::non_finite,
+             std::string(K::label) + " node of DOF '" + dof + "': a weight that carries its slaved flows is NaN or "
+                                                               "infinite");
+  };
+  node_values<n> x;
+  Eigen::Matrix<double, n, n> weights, d;
+  Eigen::Matrix<double, n, 1> w;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const auto& dofs = nodes[i].dofs;
+    for (int k = 0; k < n; ++k) {
+      const auto g = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]);
+      x.u(k) = s.u(g);
+      x.v(k) = s.v(g);
+      x.a(k) = s.a(g);
+    }
+    w.setZero();
+    for (int k = 0; k < n; ++k)
+      if (slaved_dof<K>(k)) w(k) = residual(static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]));
+    weights.setZero();
+    d.setZero();
+    K::carry(nodes[i], x, w, weights, jac ? &d : nullptr);
+    if (!weights.allFinite() || !d.allFinite()) fail(nodes[i]);
+    for (int k = 0; k < n; ++k) {
+      if (!slaved_dof<K>(k)) continue;
+      const auto gk = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]);
+      for (int j = 0; j < n; ++j) {
+        if (slaved_dof<K>(j) || weights(j, k) == 0.0) continue;
+        const auto gj = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(j)]);
+        residual(gj) += weights(j, k) * w(k);
+        abs_sum(gj) += std::abs(weights(j, k)) * abs_sum(gk);
+      }
+      residual(gk) = 0;
+      abs_sum(gk) = 0;
+    }
+    if (!jac) continue;
+    const int* e = t.entries.data() + t.first[i];
+    const int* end = t.entries.data() + t.first[i + 1];
+    for (; e != end; e += n + 2) {
+      const int k = e[0];
+      const auto src = static_cast<std::size_t>(e[1]);
+      for (std::vector<double>* b : {&values, kept[0], kept[1], kept[2]}) {
+        if (b == nullptr) continue;
+        const double v = (*b)[src];
+        if (v == 0.0) continue;
+        for (int j = 0; j < n; ++j)
+          if (e[2 + j] >= 0) (*b)[static_cast<std::size_t>(e[2 + j])] += weights(j, k) * v;
+        (*b)[src] = 0.0;
+      }
+    }
+    const int* slot = t.block.data() + i * n * n;
+    for (int j = 0; j < n; ++j)
+      for (int c = 0; c < n; ++c) {
+        const int q = slot[j * n + c];
+        if (q < 0 || d(j, c) == 0.0) continue;
+        values[static_cast<std::size_t>(q)] += cu * d(j, c);
+        if (kept[0] != nullptr) (*kept[0])[static_cast<std::size_t>(q)] += d(j, c);
+      }
+  }
+}
+
+/// Puts the slaved DOFs of every node of m on their node's equation, u_k -= c_k(u) (exact for
+/// c_k = u_k - g_k), and, with `rhs` (per equation, `eq_of(dof)`), writes -scale dc_k/dt =
+/// -scale sum_j dc_k/du_j v_j into the rows of the slaved DOFs: the BDF corrector after each
+/// update, bdf_detail::correct. Never allocates; a node state where the equation is undefined
+/// is the node's error.
+template <class Model, class State, class EqOf>
+void project_slaved(const Model& m, State& s, diagnostics& log, std::vector<double>* rhs, double scale,
+                    const EqOf& eq_of) {
+  m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+    if constexpr (SlavingNodeKind<K>) {
+      constexpr int n = K::size;
+      element_context ctx("node", "", &log);
+      node_values<n> x;
+      node_flows<n> out;
+      for (const auto& node : nodes) {
+        for (int k = 0; k < n; ++k) {
+          const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
+          x.u(k) = s.u(d);
+          x.v(k) = s.v(d);
+          x.a(k) = s.a(d);
+        }
+        Eigen::Matrix<double, n, 1> rate;
+        if (rhs == nullptr) {
+          K::evaluate(node, x, node_call{0.1, false}, out, ctx);
+        } else if constexpr (requires { K::slaved_rate(node, x, rate); }) {
+          K::slaved_rate(node, x, rate);
+        } else {
+          K::evaluate(node, x, node_call{0.1, true}, out, ctx);
+          rate = out.K * x.v;
+        }
+        for (int k = 0; k < n; ++k) {
+          if (!slaved_dof<K>(k)) continue;
+          const int d = node.dofs[static_cast<std::size_t>(k)];
+          if (rhs == nullptr) {
+            s.u(static_cast<Eigen::Index>(d)) -= out.f(k);
+            continue;
+          }
+          const int e = eq_of(d);
+          if (e >= 0) (*rhs)[static_cast<std::size_t>(e)] = -scale * rate(k);
+        }
+      }
+    }
+  });
+}
+
+}  // namespace pradis::detail
