@@ -81,12 +81,11 @@ struct pivot_scene {
 
 }  // namespace ground_pivot_tests
 
-using namespace ground_pivot_tests;
-
 TEST_SUITE("spatial/ground pivot") {
+  namespace gp = ground_pivot_tests;
   TEST_CASE("ground pivot: the carried Newton matrix is the derivative of the carried residual in u, v and a") {
-    pradis_examples::spinning_top t(pivot_top());
-    assembler<top_model> as;
+    pradis_examples::spinning_top t(gp::pivot_top());
+    assembler<gp::top_model> as;
     std::vector<char> prescribed(static_cast<std::size_t>(t.m.dof_count()), 0);
     prescribed[0] = 1;
     as.build(t.m, prescribed);
@@ -132,7 +131,7 @@ TEST_SUITE("spatial/ground pivot") {
     // Both hold the tip exactly; the pivot carries the joint force that SPH3X has as
     // multipliers, so the two give the same motion (to roundoff).
     const run_options o{.end = 1e-4, .smax = 1e-4, .smin = 1e-9};
-    pradis_examples::spinning_top pv(pivot_top());
+    pradis_examples::spinning_top pv(gp::pivot_top());
     pradis_examples::top_parameters xp;
     xp.exact_joint = true;
     pradis_examples::spinning_top sx(xp);
@@ -153,7 +152,7 @@ TEST_SUITE("spatial/ground pivot") {
     // are exact invariants. BDF at DRLTX = DABSX = 1e-9, and HHT-0.1 with fixed steps of 0.2 ms.
     for (const bool bdf : {true, false}) {
       CAPTURE(bdf);
-      pradis_examples::spinning_top t(pivot_top());
+      pradis_examples::spinning_top t(gp::pivot_top());
       run_options o{.end = 0.5, .smax = bdf ? 0.05 : 2e-4, .smin = bdf ? 1e-12 : 1e-9};
       if (bdf) {
         o.error_control = true;
@@ -161,11 +160,11 @@ TEST_SUITE("spatial/ground pivot") {
         o.dabsx = 1e-9;
       }
       auto check = [&](auto& sim) {
-        top_state s0{};
+        gp::top_state s0{};
         bool first = true;
         double de = 0, dl = 0, ds = 0, tip = 0;
         sim.on_step([&](const auto& s) {
-          const top_state x = invariants(s, t);
+          const gp::top_state x = gp::invariants(s, t);
           if (first) s0 = x, first = false;
           de = std::max(de, std::abs(x.energy - s0.energy));
           dl = std::max(dl, std::abs(x.lz - s0.lz));
@@ -195,7 +194,7 @@ TEST_SUITE("spatial/ground pivot") {
     // The ground point 0.01 m above the body's point B: x3 starts at 0.01, not at the 0 the model
     // gives it. An initial velocity on x1 is replaced by the one of the rotation, omega x rho = 0
     // for a body spinning about the axis through B.
-    pivot_scene p;
+    gp::pivot_scene p;
     add_ground_pivot(p.m, "pin", p.geometry(0.01), p.x[0], p.x[1], p.x[2], p.r);
     p.m.add<initial_velocity>("v0", {0.5}, p.x[0]);
     p.m.add<initial_rotation>("spin", {0, 0, 1, 0, 0, 0, 10}, p.r);
@@ -217,7 +216,7 @@ TEST_SUITE("spatial/ground pivot") {
   TEST_CASE("ground pivot: bad connections and geometry are code 110, a slaved DOF under a source too") {
     using pradis_element_tests::error_from;
     SUBCASE("a slaved DOF on the ground") {
-      pivot_scene p;
+      gp::pivot_scene p;
       const auto e = error_from([&] { add_ground_pivot(p.m, "pin", p.geometry(), p.m.ground(), p.x[1], p.x[2], p.r); });
       REQUIRE(e.has_value());
       CHECK(e->number() == 110);
@@ -225,7 +224,7 @@ TEST_SUITE("spatial/ground pivot") {
       CHECK(p.m.nodes<ground_pivot_kind>().empty());
     }
     SUBCASE("a DOF slaved by two pivots") {
-      pivot_scene p;
+      gp::pivot_scene p;
       add_ground_pivot(p.m, "pin", p.geometry(), p.x[0], p.x[1], p.x[2], p.r);
       const auto e = error_from([&] { add_ground_pivot(p.m, "pin2", p.geometry(), p.x[0], p.x[1], p.x[2], p.r); });
       REQUIRE(e.has_value());
@@ -235,7 +234,7 @@ TEST_SUITE("spatial/ground pivot") {
       CHECK(p.m.nodes<ground_pivot_kind>().size() == 1);
     }
     SUBCASE("a geometry that is not finite") {
-      pivot_scene p;
+      gp::pivot_scene p;
       pradis::elements::detail::joint_geometry g = p.geometry();
       g.rbz = pradis_test::not_a_number;
       const auto e = error_from([&] { add_ground_pivot(p.m, "pin", g, p.x[0], p.x[1], p.x[2], p.r); });
@@ -244,7 +243,7 @@ TEST_SUITE("spatial/ground pivot") {
       CHECK(e->message().find("ground pivot 'pin': positions and offsets must be finite") != std::string::npos);
     }
     SUBCASE("a slaved DOF that a source prescribes") {
-      pivot_scene p;
+      gp::pivot_scene p;
       add_ground_pivot(p.m, "pin", p.geometry(), p.x[0], p.x[1], p.x[2], p.r);
       p.m.add<displacement_source>("shaker", {0.01, 1.0, 0.0, 0.0}, p.x[2]);
       bdf_simulation sim(p.m);
@@ -254,7 +253,7 @@ TEST_SUITE("spatial/ground pivot") {
       CHECK(e->message().find("the slaved DOF 'x3' of a PIVOT node is prescribed by a source") != std::string::npos);
     }
     SUBCASE("a quaternion near zero is code 75 in the pivot's name") {
-      pivot_scene p;
+      gp::pivot_scene p;
       add_ground_pivot(p.m, "pin", p.geometry(), p.x[0], p.x[1], p.x[2], p.r);
       node_values<7> v;
       v.u.setZero();
