@@ -413,12 +413,7 @@ class assembler<model<Es...>> {
     const node_call call{info.dabsi, info.want_jacobian};
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       const auto& dofs = nodes[i].dofs;
-      for (int k = 0; k < n; ++k) {
-        const auto d = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]);
-        x.u(k) = s.u(d);
-        x.v(k) = s.v(d);
-        x.a(k) = s.a(d);
-      }
+      gather_node<n>(dofs, s, x);
       K::evaluate(nodes[i], x, call, out, ctx);
       double check = 0;  // NaN if a flow or an entry is not finite (0 * inf is NaN)
       for (int r = 0; r < n; ++r) {

@@ -117,12 +117,7 @@ void carry_slaved_rows(const Model& m, const Nodes& nodes, const slaved_table<K>
   Eigen::Matrix<double, n, 1> w;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const auto& dofs = nodes[i].dofs;
-    for (int k = 0; k < n; ++k) {
-      const auto g = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]);
-      x.u(k) = s.u(g);
-      x.v(k) = s.v(g);
-      x.a(k) = s.a(g);
-    }
+    gather_node<n>(dofs, s, x);
     w.setZero();
     for (int k = 0; k < n; ++k)
       if (slaved_dof<K>(k)) w(k) = residual(static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]));
@@ -183,12 +178,7 @@ void project_slaved(const Model& m, State& s, diagnostics& log, std::vector<doub
       node_values<n> x;
       node_flows<n> out;
       for (const auto& node : nodes) {
-        for (int k = 0; k < n; ++k) {
-          const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
-          x.u(k) = s.u(d);
-          x.v(k) = s.v(d);
-          x.a(k) = s.a(d);
-        }
+        gather_node<n>(node.dofs, s, x);
         Eigen::Matrix<double, n, 1> rate;
         if (rhs == nullptr) {
           K::evaluate(node, x, node_call{0.1, false}, out, ctx);

@@ -75,6 +75,17 @@ struct node_call {
   bool want_jacobian = true;  ///< fill out.K and out.C
 };
 
+/// Copies the potentials of a node's DOFs (global indices `dofs`) from a global state s (u, v, a).
+template <int N, class Dofs, class State>
+void gather_node(const Dofs& dofs, const State& s, node_values<N>& x) {
+  for (int k = 0; k < N; ++k) {
+    const auto d = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]);
+    x.u(k) = s.u(d);
+    x.v(k) = s.v(d);
+    x.a(k) = s.a(d);
+  }
+}
+
 /// A node's flows f (in the rows of K::rows) and their derivatives dF/du (K) and
 /// dF/dv (C), rows and columns in the node's DOF order.
 template <int N>

@@ -58,12 +58,7 @@ void hidden_dof_velocities(const Model& m, const Assembler& as, global_state& s,
       for (int i = 0; i < nh; ++i)
         before[static_cast<std::size_t>(i)] = s.v(dof[static_cast<std::size_t>(i)]);
       for (int it = 0; it < 4; ++it) {
-        for (int k = 0; k < n; ++k) {
-          const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
-          x.u(k) = s.u(d);
-          x.v(k) = s.v(d);
-          x.a(k) = s.a(d);
-        }
+        gather_node<n>(node.dofs, s, x);
         out.f.setZero();
         out.K.setZero();
         out.C.setZero();
@@ -122,12 +117,7 @@ void slaved_dof_start(const Model& m, const Assembler& as, global_state& s, doub
       node_values<n> x;
       node_flows<n> out;
       auto load = [&](const auto& node) {
-        for (int k = 0; k < n; ++k) {
-          const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
-          x.u(k) = s.u(d);
-          x.v(k) = s.v(d);
-          x.a(k) = s.a(d);
-        }
+        gather_node<n>(node.dofs, s, x);
         out.f.setZero();
         out.K.setZero();
         out.C.setZero();
@@ -184,12 +174,7 @@ void hidden_dof_rows(const Model& m, const Assembler& as, const global_state& s,
         if (!owned_dof<K>(h)) continue;
         const int eh = as.equation_of(node.dofs[static_cast<std::size_t>(h)]);
         if (eh < 0) continue;
-        for (int k = 0; k < n; ++k) {
-          const auto d = static_cast<Eigen::Index>(node.dofs[static_cast<std::size_t>(k)]);
-          x.u(k) = s.u(d);
-          x.v(k) = s.v(d);
-          x.a(k) = s.a(d);
-        }
+        gather_node<n>(node.dofs, s, x);
         double r = 0;
         zero_step_row_of<K>(node, x, h, row, r);
         for (int q = pat.row_ptr[static_cast<std::size_t>(eh)]; q < pat.row_ptr[static_cast<std::size_t>(eh) + 1]; ++q)
