@@ -13,9 +13,11 @@
 // pivot, axis and a disc; open it in ParaView), and a plot (PNG, with gnuplot)
 // unless --no-plot.
 //
-// Usage: spinning_top [output-directory] [--no-plot] [--quick] [--k STIFFNESS] [--exact]
+// Usage: spinning_top [output-directory] [--no-plot] [--quick] [--k STIFFNESS] [--exact] [--pivot]
 //        (--quick: 0.5 s instead of 5 s, for the ctest smoke run; --k: the penalty
-//        stiffness of SPH3 [N/m], default 1e6; --exact: the exact joint SPH3X instead)
+//        stiffness of SPH3 [N/m], default 1e6; --exact: the exact joint SPH3X instead;
+//        --pivot: a ground pivot instead, SPH3X's reduced form without multipliers,
+//        pradis::elements::add_ground_pivot)
 
 #include <algorithm>
 #include <array>
@@ -46,6 +48,7 @@ int main(int argc, char** argv) try {
     if (a == "--no-plot") plot = false;
     else if (a == "--quick") quick = true;
     else if (a == "--exact") params.exact_joint = true;
+    else if (a == "--pivot") params.exact_joint = params.ground_pivot = true;
     else if (a == "--k") {
       std::size_t used = 0;
       const std::string v = i + 1 < argc ? argv[++i] : "";
@@ -59,7 +62,7 @@ int main(int argc, char** argv) try {
         return 2;
       }
     } else if (a == "--help" || a == "-h") {
-      std::cout << "usage: spinning_top [output-directory] [--no-plot] [--quick] [--k STIFFNESS] [--exact]\n";
+      std::cout << "usage: spinning_top [output-directory] [--no-plot] [--quick] [--k STIFFNESS] [--exact] [--pivot]\n";
       return 0;
     } else dir = a;
   }
@@ -93,11 +96,15 @@ int main(int argc, char** argv) try {
   double max_gap = 0;
   sim.on_output([&](const auto& s) {
     if (output++ % 5 == 0) vtk.write(s);  // every 10 ms
-    max_gap = std::max(max_gap, s.get_model().work("tip")[0]);
+    // The joint gap: W(1) of SPH3 / SPH3X; with the ground pivot, the tip's distance from the origin.
+    const vec3 c = c0 + vec3(s.u(top.x[0]), s.u(top.x[1]), s.u(top.x[2]));
+    const double gap = params.ground_pivot ? (c + spatial::node_rotation(s, r) * vec3(0, 0, -l)).norm()
+                                           : s.get_model().work("tip")[0];
+    max_gap = std::max(max_gap, gap);
     const vec3 ax = spatial::node_rotation(s, r).col(2);
     const vec3 tip = 2 * l * ax;  // the pivot stays at the origin (up to the joint gap)
     out.add_row(s.time(), {tip.x(), tip.y(), tip.z(), std::acos(ax.z()) * 180 / pi,
-                           std::atan2(ax.y(), ax.x()) * 180 / pi, s.get_model().work("tip")[0]});
+                           std::atan2(ax.y(), ax.x()) * 180 / pi, gap});
   });
   const double end = quick ? 0.5 : 5.0;
   sim.run({.end = end, .out = 0.002, .smax = 1e-3,
@@ -108,7 +115,9 @@ int main(int argc, char** argv) try {
   std::cout << "spinning_top: " << out.rows() << " output rows to " << csv << "\n";
   std::cout << "animation: " << vtk.frames() << " frames, " << vtk.collection().string() << " (ParaView)\n";
   const auto& st = sim.statistics();
-  std::cout << (params.exact_joint ? "joint: SPH3X (exact)" : "joint: SPH3, k = " + std::to_string(params.k) + " N/m")
+  std::cout << (params.ground_pivot  ? "joint: ground pivot (SPH3X's reduced form)"
+                : params.exact_joint ? "joint: SPH3X (exact)"
+                                     : "joint: SPH3, k = " + std::to_string(params.k) + " N/m")
             << "; largest joint gap " << max_gap << " m\n";
   std::cout << "steps " << st.steps << ", rejected " << st.rejected_steps << ", Newton iterations "
             << st.newton_iterations << "\n";
