@@ -164,14 +164,19 @@ class driver_core {
       if (massless_[d]) c[d] = dof_class_massless;
     return c;
   }
+  /// Per DOF: left out of the local error tests: the index-3 multipliers (index3_) and the
+  /// slaved DOFs of the nodes (core/node_kind.hpp: functions of their node's other DOFs).
+  const std::vector<char>& error_skip() const noexcept { return error_skip_; }
   /// Sets index3_, the massless DOFs and their count from classes as dof_classes() gives them.
   void set_dof_classes(const std::vector<double>& classes) {
     index3_.assign(classes.size(), 0);
     massless_.assign(classes.size(), 0);
     massless_count_ = 0;
     massless_dof_ = -1;
+    error_skip_ = slaved_dofs(m_);
+    error_skip_.resize(classes.size(), 0);
     for (std::size_t d = 0; d < classes.size(); ++d) {
-      if (classes[d] == dof_class_index3) index3_[d] = 1;
+      if (classes[d] == dof_class_index3) index3_[d] = error_skip_[d] = 1;
       if (classes[d] == dof_class_massless) {
         massless_[d] = 1;
         if (massless_count_++ == 0) massless_dof_ = static_cast<int>(d);
@@ -226,6 +231,7 @@ class driver_core {
   /// necessary for index-3 multipliers (they are determined by the positions,
   /// not by an integrated derivative; Hairer and Wanner, Solving ODEs II, VII.3).
   std::vector<char> index3_;
+  std::vector<char> error_skip_;  // index3_ and the slaved DOFs (error_skip())
   /// Equations with neither mass nor viscosity (algebraic, found at the zero step; index-3 multipliers and the
   /// nodes' hidden DOFs, such as the rotational q4, not counted), and the first one's DOF (-1 if none): the
   /// undamped-scheme warning of simulation::run names it.

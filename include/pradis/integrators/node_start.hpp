@@ -216,4 +216,17 @@ void mark_node_kinds(const Model& m, const Assembler& as, const std::vector<doub
   });
 }
 
+/// Per DOF: whether it is a slaved DOF of a node (core/node_kind.hpp, K::slaved). The drivers
+/// leave them out of their error tests (they follow their node's other DOFs).
+template <class Model>
+std::vector<char> slaved_dofs(const Model& m) {
+  std::vector<char> out(static_cast<std::size_t>(m.dof_count()), 0);
+  m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+    for (const auto& node : nodes)
+      for (int k = 0; k < K::size; ++k)
+        if (slaved_dof<K>(k)) out[static_cast<std::size_t>(node.dofs[static_cast<std::size_t>(k)])] = 1;
+  });
+  return out;
+}
+
 }  // namespace pradis::detail

@@ -364,7 +364,8 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   /// CONTROL; throws step_too_small when the step needed is below SMIN, naming
   /// the DOF and the time.
   bool error_accepts(double h) {
-    const error_test e = local_error_test(scheme_, asm_, s_, s0_, a_prev_, h_prev_, h, opt_, m_.scales(), index3_);
+    const error_test e =
+        local_error_test(scheme_, asm_, s_, s0_, a_prev_, h_prev_, h, opt_, m_.scales(), this->error_skip());
     h_error_ = e.h_next;
     stats_.limiting_dof = e.worst;
     if (e.passed) return true;

@@ -293,9 +293,8 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   // ---- the BDF steps --------------------------------------------------------
   /// The error weights 1 / (DRLTX |x| + DABSX s) of the displacements and
   /// velocities of the free DOFs at the current state; zero for the multipliers
-  /// of index-3 constraints (driver_core::index3_) and for slaved DOFs (core/node_kind.hpp: functions of
-  /// their node's other DOFs, whose velocities the BDF formula would get from c times their positions'
-  /// round-off), which the error and
+  /// of index-3 constraints and for slaved DOFs (driver_core::error_skip(); core/node_kind.hpp:
+  /// functions of their node's other DOFs), which the error and
   /// corrector tests leave out. In the plain index-3 form (no stabilisation)
   /// the velocities of the DOFs an index-3 constraint acts on (the columns of
   /// its row, index2_) are index-2 components: their weights are multiplied by
@@ -314,8 +313,8 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     for (int i = 0; i < ne; ++i) {
       const auto d = asm_.dof_of(i);
       const double s = m_.scales()[static_cast<std::size_t>(d)].potential;
-      const bool skip = (static_cast<std::size_t>(d) < index3_.size() && index3_[static_cast<std::size_t>(d)]) ||
-                        (static_cast<std::size_t>(d) < slaved_.size() && slaved_[static_cast<std::size_t>(d)]);
+      const auto& sk = this->error_skip();
+      const bool skip = static_cast<std::size_t>(d) < sk.size() && sk[static_cast<std::size_t>(d)];
       const bool index2 = static_cast<std::size_t>(i) < index2_.size() && index2_[static_cast<std::size_t>(i)];
       w_(i) = skip ? 0.0 : 1 / (opt_.drltx * std::abs(s_.u(d)) + dabsx * s);
       w_(ne + i) = skip ? 0.0 : (index2 ? hv : 1.0) / (opt_.drltx * std::abs(s_.v(d)) + dabsx * s);
@@ -335,8 +334,8 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       yp(ne + i) = s_.a(d);
     }
     converged_state_evaluation_ = this->states_need_converged_evaluation();
-    slaved_ = bdf_detail::slaved_dofs(m_);
-    any_slaved_ = std::find(slaved_.begin(), slaved_.end(), char{1}) != slaved_.end();
+    const std::vector<char> slaved = detail::slaved_dofs(m_);
+    any_slaved_ = std::find(slaved.begin(), slaved.end(), char{1}) != slaved.end();
     rates_.build(m_.rotation_nodes(), asm_, bopt_.rotation_rates);
     turned_.build(m_, asm_, bopt_.rotated_jacobian, bopt_.body_frame);
     rates_.rates(s_, ne, y, &yp);
@@ -491,8 +490,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   Eigen::VectorXd y_p_, yp_p_, w_, e_, dy_;
   bdf_detail::newton_memory newton_;  // the kept factorisation, its c and Newton's rate estimate
   std::vector<char> index2_;  // by equation: a DOF of an index-3 constraint's row (mark_constraints)
-  std::vector<char> slaved_;    // by DOF: a slaved DOF of a node (its weights are 0, set by start_history)
-  bool any_slaved_ = false;      // some DOF is slaved (bdf_detail::correct projects them)
+  bool any_slaved_ = false;  // some DOF is slaved (set by start_history; bdf_detail::correct projects them)
   bdf_detail::rotated_jacobian turned_;    // the kept Newton matrix turned with the rotational nodes
   bdf_detail::rate_form rates_;            // rotational nodes whose velocity rows hold (w, r) (rate_form.hpp)
   bdf_detail::index2_stabilisation stab_;  // the stabilised index-2 form (empty: none, or the plain index-3 form)

@@ -27,18 +27,6 @@ struct free_rotation_node {
   int node = -1;             ///< index among the model's rotational nodes
 };
 
-/// Per DOF: whether it is a slaved DOF of a node (core/node_kind.hpp, K::slaved).
-template <class Model>
-std::vector<char> slaved_dofs(const Model& m) {
-  std::vector<char> out(static_cast<std::size_t>(m.dof_count()), 0);
-  m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
-    for (const auto& node : nodes)
-      for (int k = 0; k < K::size; ++k)
-        if (slaved_dof<K>(k)) out[static_cast<std::size_t>(node.dofs[static_cast<std::size_t>(k)])] = 1;
-  });
-  return out;
-}
-
 /// The rotational nodes whose four DOFs are free equations of `as`.
 template <class Assembler>
 std::vector<free_rotation_node> free_rotation_nodes(const std::vector<rotation_node_record>& nodes,
