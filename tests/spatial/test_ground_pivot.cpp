@@ -141,7 +141,8 @@ TEST_SUITE("spatial/ground pivot") {
     for (int k = 0; k < 3; ++k) {
       CHECK(a.a(pv.x[static_cast<std::size_t>(k)]) ==
             doctest::Approx(b.a(sx.x[static_cast<std::size_t>(k)])).epsilon(1e-9).scale(1));
-      CHECK(a.u(pv.x[static_cast<std::size_t>(k)]) == doctest::Approx(b.u(sx.x[static_cast<std::size_t>(k)])).epsilon(1e-9));
+      const auto kk = static_cast<std::size_t>(k);
+      CHECK(a.u(pv.x[kk]) == doctest::Approx(b.u(sx.x[kk])).epsilon(1e-9));
     }
     const spatial::quaternion qa = spatial::node_quaternion(a, pv.r), qb = spatial::node_quaternion(b, sx.r);
     CHECK((qa - qb).norm() < 1e-12);
@@ -209,7 +210,7 @@ TEST_SUITE("spatial/ground pivot") {
     CHECK(x.tip < 1e-12);
   }
 
-  TEST_CASE("ground pivot: the zero step puts a start off the pivot on it, and gives the velocities of the pivot's motion") {
+  TEST_CASE("ground pivot: the zero step puts a start off the pivot on it, with the pivot motion's velocities") {
     // The ground point 0.01 m above the body's point B: x3 starts at 0.01, not at the 0 the model
     // gives it. An initial velocity on x1 is replaced by the one of the rotation, omega x rho = 0
     // for a body spinning about the axis through B.

@@ -5,13 +5,13 @@
 /// rotational node q) is held with its point B on a fixed point A of the ground, like
 /// SPH3X with body a the ground, but without multipliers: the body's translations
 /// follow its rotation, x = A - X0 - R(q) r_B, and the joint force (-f_x, the flows of
-/// the elements on x) reaches the moment rows as -rho_B x f_x. The model keeps its 7
-/// DOFs (x, y, z, q1..q4) against SPH3X's 10 (the joint's 3 multipliers); its
-/// rotation is all the motion, as in a Ball mobilizer. Exact joint geometry of SPH3X
-/// (joints.hpp, joint_geometry; A on the ground, whose rotation is the identity).
-/// Added by add_ground_pivot; SPH3X declares the kind, so a model that lists
-/// `exact_spherical_joint` can have these nodes (docs/joints.md, "A joint to the ground
-/// in reduced form").
+/// the elements on x) reaches the moment rows as -rho_B x f_x. The body has its 7
+/// DOFs (x, y, z, q1..q4) and no more, where SPH3X adds its 3 multipliers (and the
+/// ground's rotational node); its rotation is all the motion, as in a Ball mobilizer.
+/// Exact joint geometry of SPH3X (joints.hpp, joint_geometry; A on the ground, whose
+/// rotation is the identity). Added by add_ground_pivot; SPH3X declares the kind, so a
+/// model that lists `exact_spherical_joint` can have these nodes (docs/joints.md, "A
+/// spherical joint to the ground in reduced form").
 
 #include <Eigen/Core>
 #include <array>
