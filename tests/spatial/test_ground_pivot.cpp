@@ -272,6 +272,35 @@ TEST_SUITE("spatial/ground pivot") {
       CHECK(e->number() == 110);
       CHECK(e->message().find("the slaved DOF 'x3' of a PIVOT node is prescribed by a source") != std::string::npos);
     }
+    SUBCASE("a carry weight that is not finite is code 150 in the name of the node's first slaved DOF") {
+      // Reached only where the elements on the body let a NaN quaternion through; called directly here.
+      gp::pivot_scene p;
+      add_ground_pivot(p.m, "pin", p.geometry(), p.x[0], p.x[1], p.x[2], p.r);
+      assembler<gp::pivot_scene::model_type> as;
+      std::vector<char> prescribed(static_cast<std::size_t>(p.m.dof_count()), 0);
+      prescribed[0] = 1;
+      as.build(p.m, prescribed);
+      pradis::detail::slaved_table<ground_pivot_kind> table;
+      const auto& nodes = p.m.nodes<ground_pivot_kind>();
+      table.build(nodes, [&](int d) { return as.equation_of(d); }, as.pattern());
+      global_state s;
+      s.resize(p.m.dof_count());
+      s.u(p.r.q4.index) = 1;
+      s.u(p.r.q1.index) = pradis_test::not_a_number;
+      Eigen::VectorXd residual = Eigen::VectorXd::Zero(p.m.dof_count()), abs_sum = residual;
+      std::vector<double> values(static_cast<std::size_t>(as.pattern().nnz()), 0.0);
+      std::vector<double>* kept[3] = {nullptr, nullptr, nullptr};
+      element_context ctx;
+      const auto e = error_from([&] {
+        pradis::detail::carry_slaved_rows<ground_pivot_kind>(p.m, nodes, table, s, 1.0, true, residual, abs_sum, values,
+                                                             kept, ctx);
+      });
+      REQUIRE(e.has_value());
+      CHECK(e->number() == 150);
+      CHECK(e->element_type() == "PIVOT");
+      CHECK(e->instance() == "x1");
+      CHECK(e->message().find("a weight that carries its slaved flows is NaN or infinite") != std::string::npos);
+    }
     SUBCASE("a quaternion near zero is code 75 in the pivot's name") {
       gp::pivot_scene p;
       add_ground_pivot(p.m, "pin", p.geometry(), p.x[0], p.x[1], p.x[2], p.r);
