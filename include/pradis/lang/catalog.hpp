@@ -54,6 +54,26 @@ inline const std::vector<program_info>& integration_programs() {
   return v;
 }
 
+/// Node programs (#STRUCTURE, written like an element): nodes whose equation slaves some of their
+/// DOFs to the others, with no element and no work vector of their own. `keys` holds the
+/// nodes and the parameters, as an element's help does.
+inline const std::vector<program_info>& node_programs() {
+  static const std::vector<program_info> v{
+      {"PIVOT",
+       "ground pivot: SPH3X from the ground to body b in reduced form, without multipliers; the body's "
+       "translations follow its rotation (docs/joints.md)",
+       "Tip 'PIVOT (1 2 3 4 5 6; Geometry)    (the 12 parameters of SPH3X, body a the ground)",
+       "Nodes (6): body b's x y z (slaved: they follow q) and q1 q2 q3; the flows on x y z are the joint "
+       "force's negative\n"
+       "Parameters (12, as SPH3X's; A is a fixed point of the ground, whose rotation is the identity):\n"
+       PRADIS_JOINT_GEOMETRY_HELP
+       "A node of the body on the ground, a body DOF that is already slaved by another PIVOT, or a parameter "
+       "that is not finite is an error; the body's initial translations are put on the pivot (a warning names "
+       "any initial condition this replaces)\n"},
+  };
+  return v;
+}
+
 /// Keys every integration program accepts.
 inline std::string_view common_run_keys() {
   return "END - end time of the stage (required)\n"

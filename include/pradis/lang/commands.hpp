@@ -42,6 +42,7 @@ inline void print_catalog(std::ostream& os) {
     os << "  " << std::left << std::setw(8) << E::passport.name << ' ' << E::help.title << " (EXT=" << E::passport.ext
        << ", PAR=" << E::passport.par << ")\n";
   });
+  detail::program_list(os, "Nodes with an equation (#STRUCTURE: Name 'NODE (nodes; parameters)):", node_programs());
   detail::program_list(os, "Integration programs ($RUN: Label 'PROGRAM (END=..., ...)):", integration_programs());
   detail::program_list(os, "Output programs (#OUTPUT: Label 'PROGRAM (...)):", output_programs());
   detail::program_list(os, "Display programs ($PRINT: Label 'PROGRAM (...)):", display_programs());
@@ -88,6 +89,8 @@ inline void print_program_reference(std::ostream& os, const program_info& p, std
     os << "Not implemented yet (an error if given):";
     for (const auto& k : unimplemented_run_keys()) os << ' ' << k;
     os << '\n';
+  } else if (kind == "node program") {
+    detail::indented_lines(os, p.keys);
   } else if (!p.keys.empty()) {
     os << "Keys:\n";
     detail::indented_lines(os, p.keys);
@@ -97,7 +100,7 @@ inline void print_program_reference(std::ostream& os, const program_info& p, std
 /// Every name `pradis help` knows (for suggestions).
 inline std::vector<std::string> help_names() {
   std::vector<std::string> v = element_names();
-  for (const auto* l : {&integration_programs(), &output_programs(), &display_programs()})
+  for (const auto* l : {&node_programs(), &integration_programs(), &output_programs(), &display_programs()})
     for (const auto& p : *l) v.emplace_back(p.name);
   return v;
 }
@@ -114,7 +117,9 @@ inline bool print_reference(std::ostream& os, std::ostream& err, std::string_vie
     }
   });
   if (found) return true;
-  if (auto* p = find_program(integration_programs(), n))
+  if (auto* np = find_program(node_programs(), n))
+    print_program_reference(os, *np, "node program");
+  else if (auto* p = find_program(integration_programs(), n))
     print_program_reference(os, *p, "integration program");
   else if (auto* q = find_program(output_programs(), n))
     print_program_reference(os, *q, "output program");

@@ -171,6 +171,8 @@ class model_builder {
           if (&g != &f && g.name == f.name) fail(g.loc, "$FRAGMENT " + f.name + " is defined twice");
         if (f.name == "" || find_element_passport(f.name))
           fail(f.loc, "fragment name " + f.name + " is the name of a library element");
+        if (find_program(node_programs(), f.name))
+          fail(f.loc, "fragment name " + f.name + " is the name of a node program (`pradis help " + f.name + "`)");
         continue;
       }
       if (main)
@@ -196,10 +198,13 @@ class model_builder {
     for (const auto& c : f.structure) {
       if (auto p = find_element_passport(c.program)) {
         add_element(c, *p, sc);
+      } else if (c.program == "PIVOT") {
+        add_pivot(c, sc);
       } else if (const ast::fragment* sub = find_fragment(c.program); sub && !c.program.empty()) {
         add_instance(c, *sub, sc);
       } else {
         std::vector<std::string> cands = element_names();
+        cands.emplace_back("PIVOT");
         for (const auto& g : prog_.fragments)
           if (!g.name.empty()) cands.push_back(g.name);
         std::string hint;
@@ -249,6 +254,48 @@ class model_builder {
     }
     element_loc_[name] = c.loc;
     elements_.push_back({name, c.loc, c.args[1], par});
+  }
+
+  /// A ground pivot (catalog.hpp, node_programs): 'PIVOT (x y z q1 q2 q3; the 12 parameters of SPH3X),
+  /// elements::add_ground_pivot on body b's reference point and rotational node (the node is made
+  /// here if no element has made it yet; an element placed later on the same q1 q2 q3 shares it).
+  void add_pivot(const ast::call& c, scope& sc) {
+    if (c.args.size() != 2)
+      fail(c.args_loc, std::string("a PIVOT needs (nodes; parameters): it ") +
+                           (c.args.size() < 2 ? "has no ';' between its nodes and its parameters"
+                                              : "has more than one ';'"));
+    const std::vector<int> nodes = node_list(c.args[0]);
+    if (nodes.size() != 6)
+      fail(c.args.front().empty() ? c.args_loc : c.args[0].front().loc,
+           "'PIVOT needs 6 nodes (body b's x y z and q1 q2 q3), got " + std::to_string(nodes.size()));
+    for (std::size_t k = 0; k < 6; ++k)
+      if (nodes[k] == 0)
+        fail(c.args[0][k].loc, "a PIVOT holds a body that moves: its node " + std::to_string(k + 1) +
+                                   " cannot be the ground (node 0)");
+    const std::vector<double> par = expand(c.args[1], "a PIVOT's parameter list");
+    if (par.size() != 12)
+      fail(c.args[1].empty() ? c.args_loc : c.args[1].front().loc,
+           "'PIVOT takes 12 parameters (the joint geometry of SPH3X), got " + std::to_string(par.size()) +
+               " after expanding $DATA lists");
+    std::vector<dof> ds;
+    for (int n : nodes) ds.push_back(dof{node_dof(sc, n)});
+    const std::string name = sc.prefix + (c.label.empty() ? "PIVOT " + std::to_string(++pivots_) : c.label);
+    if (auto f = element_loc_.find(name); f != element_loc_.end())
+      fail(c.loc, "an element or pivot named '" + name + "' is already defined at " + f->second.str());
+    const elements::detail::joint_geometry geo{par[0], par[1], par[2], par[3], par[4],  par[5],
+                                                par[6], par[7], par[8], par[9], par[10], par[11]};
+    try {
+      const auto node = model_->find_rotation_node(ds[3]);
+      const rotation_node r = node ? *node : model_->add_rotation_node("", ds[3], ds[4], ds[5]);
+      if (r.q1.index != ds[3].index || r.q2.index != ds[4].index || r.q3.index != ds[5].index)
+        fail(c.args[0][3].loc, "nodes " + std::to_string(nodes[3]) + " " + std::to_string(nodes[4]) + " " +
+                                   std::to_string(nodes[5]) +
+                                   " are not the q1 q2 q3 of one spatial rotational node, in this order");
+      elements::add_ground_pivot(*model_, name, geo, ds[0], ds[1], ds[2], r);
+    } catch (const pradis::error& e) {
+      fail(c.loc, "PIVOT '" + name + "': " + e.message());
+    }
+    element_loc_[name] = c.loc;
   }
 
   std::string instance_name(const instance_location& loc) const {
@@ -421,6 +468,7 @@ class model_builder {
   std::vector<output_column> outputs_;
   std::map<std::string, location> output_labels_;
   std::size_t instances_ = 0;
+  int pivots_ = 0;  ///< PIVOTs without a label so far (their names)
 };
 
 }  // namespace pradis::lang
