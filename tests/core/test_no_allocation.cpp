@@ -1,7 +1,7 @@
 // The hot paths do not allocate: every library element's evaluate (with and
 // without the Jacobian), assembler::evaluate over a built model, sparse_lu
 // factorize + solve after analyze, and a whole integration step
-// (simulation::run of one step after the first stage).
+// (simulation::run of one step after the first stage; bdf_simulation::run under error control).
 //
 // How: this file replaces the global operator new/delete (all variants) of the
 // whole test executable with versions that forward to malloc/free and count,
@@ -28,6 +28,7 @@
 
 #include "pradis/assembly/assembler.hpp"
 #include "pradis/elements/library.hpp"
+#include "pradis/integrators/bdf/bdf_simulation.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/linalg/ordering.hpp"
@@ -310,6 +311,28 @@ double residual_norm(const linalg::sparsity_pattern& p, const std::vector<double
   return worst;
 }
 
+// bdf_simulation::run restarts its history at every stage (start_history: the stage's set-up,
+// which sizes its tables anew); its steps must not allocate. So a stage of many steps allocates
+// exactly what a stage of a few does.
+template <class Sim>
+void check_bdf_steps_do_not_allocate(Sim& sim, run_options o) {
+  o.end = 0.02;
+  sim.run(o);  // zero step, build, analyze, the first steps and orders
+  o.end = 0.04;
+  sim.run(o);  // warm-up of a later stage
+  run_statistics few{}, many{};
+  o.end = 0.05;
+  const allocation_counts a = count_allocations([&] { few = sim.run(o); });
+  o.end = 0.4;
+  const allocation_counts b = count_allocations([&] { many = sim.run(o); });
+  MESSAGE("BDF stages of ", few.steps, " and ", many.steps, " steps: ", a.news, " / ", b.news, " news, ", a.mallocs,
+          " / ", b.mallocs, " mallocs (the set-up of a stage)");
+  CHECK(many.steps > few.steps + 20);
+  CHECK(b.news == a.news);
+  CHECK(b.deletes == a.deletes);
+  CHECK(b.mallocs == a.mallocs);
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -485,6 +508,48 @@ TEST_SUITE("core/allocation") {
     CHECK(one.steps == 1);
     CHECK(many.steps == 16);
     CHECK(std::isfinite(sim.v(dof{m.dof_count() - 2})));
+  }
+
+  TEST_CASE("BDF steps under error control do not allocate (a stage allocates its set-up only)") {
+    model<planar_inertia, planar_link, constant_force> m;
+    build_chain(m, 50);
+    bdf_simulation sim(m);
+    check_bdf_steps_do_not_allocate(sim, {.smax = 1e-3, .error_control = true, .dabsx = 1e-6, .drltx = 1e-6});
+    CHECK(std::isfinite(sim.v(dof{m.dof_count() - 2})));
+  }
+
+  TEST_CASE("steps of a body on a ground pivot (slaved translations: the carry and the projection) do not "
+            "allocate, under HHT and BDF") {
+    using model_type = model<rigid_body, exact_spherical_joint, spatial_force, initial_rotation>;
+    const auto build = [](model_type& m) {
+      const auto x = m.add_dofs(3, "x");
+      const rotation_node r = m.add_rotation_node("r");
+      m.add<rigid_body>("body", {1, 0.01, 0.01, 0.02, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
+      const elements::detail::joint_geometry tip{0, 0, 0, 0, 0, 0, 0, 0, 0.1, 0, 0, -0.1};
+      elements::add_ground_pivot(m, "tip", tip, x[0], x[1], x[2], r);
+      m.add<spatial_force>("weight", {0, 0, -9.81, 0, 0, 0, 0, 0}, x[0], x[1], x[2]);
+      m.add<initial_rotation>("start", {1, 0, 0, 30, 0, 0, 30}, r);
+      return r;
+    };
+    {
+      model_type m;
+      const rotation_node r = build(m);
+      simulation sim(m, hht(-0.1));
+      sim.run({.end = 1e-3, .smax = 1e-3});
+      sim.run({.end = 2e-3, .smax = 1e-3});
+      run_statistics many{};
+      const allocation_counts counts = count_allocations([&] { many = sim.run({.end = 20e-3, .smax = 1e-3}); });
+      check_none(counts);
+      CHECK(many.steps == 18);
+      CHECK(std::isfinite(sim.u(r.q4)));
+    }
+    {
+      model_type m;
+      const rotation_node r = build(m);
+      bdf_simulation sim(m);
+      check_bdf_steps_do_not_allocate(sim, {.smax = 1e-3, .error_control = true, .dabsx = 1e-6, .drltx = 1e-6});
+      CHECK(std::isfinite(sim.u(r.q4)));
+    }
   }
 
   TEST_CASE("steps of a spatial model (BODY3, M3B, F3B, F3A on a rotational node with its norm equation) "

@@ -254,6 +254,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     h_nominal_ = c.h_nominal;
     h_prev_ = c.h_previous;
     a_prev_ = std::move(c.a_previous);
+    p_start_.resize(s_.p.size());
     successes_ = c.successes;
     stats_ = c.stats;
     m_.work_pool() = std::move(c.work);
@@ -279,6 +280,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     this->start_zero_step(newton_.linear_solver(), [&] { build(); });
     newton_.invalidate();  // the solver holds the factorisation of the initial-derivative matrix
     a_prev_ = s_.a;
+    p_start_.resize(s_.p.size());  // sized here, so that the steps never allocate it
     h_prev_ = 0;
     this->finish_zero_step();
     notify();
