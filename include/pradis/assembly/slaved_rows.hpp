@@ -12,6 +12,7 @@
 /// Tables are made once per topology (build); the carry never allocates.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -30,11 +31,14 @@ namespace pradis::detail {
 template <class K>
 struct slaved_table {
   static constexpr int n = K::size;
-  /// Per node: [first[i], first[i + 1]) in `entries`, groups of n + 2 ints: the slaved DOF k, the slot of an
-  /// entry of its row, then the slots of the same column in the node's rows 0..n-1 (-1: none, or k itself).
+  /// Per node: [first[i], first[i + 1]) in `entries`, one group per entry of a slaved row: the
+  /// slaved DOF k, the slot of the entry, the count m of its targets, then m pairs (j, slot of the
+  /// same column in the node's row j) over the node's rows j that are not slaved and have an equation.
   std::vector<int> first, entries;
-  /// Per node: the n x n slots of the node's block (row-major; -1 where a DOF has no equation).
-  std::vector<int> block;
+  /// Per node: [block_first[i], block_first[i + 1]) in `block`, pairs (c * n + j, slot) of the
+  /// node's block where row j is not slaved (the rows that K::carry's D reaches) and both DOFs
+  /// have equations.
+  std::vector<int> block_first, block;
 
   /// The pattern entries the carry needs: the node's other rows get every column of a slaved row.
   /// `entries` holds the (row, column) equation pairs of the elements and nodes so far; the new
@@ -43,53 +47,72 @@ struct slaved_table {
   template <class Nodes, class EqOf, class Name>
   static void add_entries(const Nodes& nodes, const EqOf& eq_of, const Name& name,
                           std::vector<std::pair<int, int>>& entries) {
-    const std::size_t m = entries.size();
-    for (const auto& node : nodes)
+    // owner[e]: the node (index into `nodes`) whose slaved DOF has equation e, or -1. One pass over the
+    // entries then finds every entry of a slaved row.
+    int rows = 0;
+    for (const auto& [r, c] : entries) rows = std::max(rows, r + 1);
+    std::vector<int> owner(static_cast<std::size_t>(rows), -1);
+    for (std::size_t i = 0; i < nodes.size(); ++i)
       for (int k = 0; k < n; ++k) {
         if (!slaved_dof<K>(k)) continue;
-        const int ek = eq_of(node.dofs[static_cast<std::size_t>(k)]);
+        const int ek = eq_of(nodes[i].dofs[static_cast<std::size_t>(k)]);
         if (ek < 0)
-          throw error(error_code::invalid_model, "the slaved DOF '" + name(node.dofs[static_cast<std::size_t>(k)]) +
+          throw error(error_code::invalid_model, "the slaved DOF '" + name(nodes[i].dofs[static_cast<std::size_t>(k)]) +
                                                      "' of a " + std::string(K::label) +
                                                      " node is prescribed by a source (a DOF follows either its "
                                                      "node's equation or a source, not both)");
-        for (std::size_t e = 0; e < m; ++e) {
-          if (entries[e].first != ek) continue;
-          for (int j = 0; j < n; ++j) {
-            const int ej = eq_of(node.dofs[static_cast<std::size_t>(j)]);
-            if (ej >= 0 && !slaved_dof<K>(j)) entries.emplace_back(ej, entries[e].second);
-          }
-        }
+        if (ek < rows) owner[static_cast<std::size_t>(ek)] = static_cast<int>(i);
       }
+    const std::size_t m = entries.size();
+    for (std::size_t e = 0; e < m; ++e) {
+      const int i = owner[static_cast<std::size_t>(entries[e].first)];
+      if (i < 0) continue;
+      const int col = entries[e].second;
+      for (int j = 0; j < n; ++j) {
+        const int ej = eq_of(nodes[static_cast<std::size_t>(i)].dofs[static_cast<std::size_t>(j)]);
+        if (ej >= 0 && !slaved_dof<K>(j)) entries.emplace_back(ej, col);
+      }
+    }
   }
 
   /// The tables for the final pattern.
   template <class Nodes, class EqOf>
   void build(const Nodes& nodes, const EqOf& eq_of, const linalg::sparsity_pattern& p) {
     first.assign(1, 0);
+    block_first.assign(1, 0);
     entries.clear();
-    block.assign(nodes.size() * static_cast<std::size_t>(n * n), -1);
+    block.clear();
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       const auto& d = nodes[i].dofs;
+      const auto eq = [&](int k) { return eq_of(d[static_cast<std::size_t>(k)]); };
       for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c) {
-          const int er = eq_of(d[static_cast<std::size_t>(r)]), ec = eq_of(d[static_cast<std::size_t>(c)]);
-          if (er >= 0 && ec >= 0) block[i * n * n + static_cast<std::size_t>(r * n + c)] = p.find(er, ec);
-        }
+        for (int c = 0; c < n; ++c)
+          if (!slaved_dof<K>(r) && eq(r) >= 0 && eq(c) >= 0) {
+            const int slot = p.find(eq(r), eq(c));
+            if (slot < 0) continue;
+            block.push_back(c * n + r);  // d(r, c) in Eigen's column-major storage
+            block.push_back(slot);
+          }
       for (int k = 0; k < n; ++k) {
         if (!slaved_dof<K>(k)) continue;
-        const int ek = eq_of(d[static_cast<std::size_t>(k)]);
+        const int ek = eq(k);
         for (int q = p.row_ptr[static_cast<std::size_t>(ek)]; q < p.row_ptr[static_cast<std::size_t>(ek) + 1]; ++q) {
           entries.push_back(k);
           entries.push_back(q);
+          const std::size_t count = entries.size();
+          entries.push_back(0);
           const int col = p.col[static_cast<std::size_t>(q)];
           for (int j = 0; j < n; ++j) {
-            const int ej = eq_of(d[static_cast<std::size_t>(j)]);
-            entries.push_back(ej >= 0 && !slaved_dof<K>(j) ? p.find(ej, col) : -1);
+            const int slot = slaved_dof<K>(j) || eq(j) < 0 ? -1 : p.find(eq(j), col);
+            if (slot < 0) continue;
+            entries.push_back(j);
+            entries.push_back(slot);
+            ++entries[count];
           }
         }
       }
       first.push_back(static_cast<int>(entries.size()));
+      block_first.push_back(static_cast<int>(block.size()));
     }
   }
 };
@@ -124,7 +147,9 @@ void carry_slaved_rows(const Model& m, const Nodes& nodes, const slaved_table<K>
     weights.setZero();
     d.setZero();
     K::carry(nodes[i], x, w, weights, jac ? &d : nullptr);
-    if (!weights.allFinite() || !d.allFinite()) fail(nodes[i]);
+    // x * 0 is 0 for a finite x and NaN otherwise (a vectorised sum instead of a branch per entry).
+    const double check = (weights.array() * 0.0).sum() + (d.array() * 0.0).sum();
+    if (check != 0.0) fail(nodes[i]);  // NaN != 0 too
     for (int k = 0; k < n; ++k) {
       if (!slaved_dof<K>(k)) continue;
       const auto gk = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]);
@@ -138,28 +163,30 @@ void carry_slaved_rows(const Model& m, const Nodes& nodes, const slaved_table<K>
       abs_sum(gk) = 0;
     }
     if (!jac) continue;
-    const int* e = t.entries.data() + t.first[i];
-    const int* end = t.entries.data() + t.first[i + 1];
-    for (; e != end; e += n + 2) {
-      const int k = e[0];
+    std::vector<double>* const buffers[4] = {&values, kept[0], kept[1], kept[2]};
+    for (const int *e = t.entries.data() + t.first[i], *end = t.entries.data() + t.first[i + 1]; e != end;
+         e += 3 + 2 * e[2]) {
+      const int k = e[0], m = e[2];
       const auto src = static_cast<std::size_t>(e[1]);
-      for (std::vector<double>* b : {&values, kept[0], kept[1], kept[2]}) {
+      for (std::vector<double>* b : buffers) {
         if (b == nullptr) continue;
-        const double v = (*b)[src];
-        if (v == 0.0) continue;
-        for (int j = 0; j < n; ++j)
-          if (e[2 + j] >= 0) (*b)[static_cast<std::size_t>(e[2 + j])] += weights(j, k) * v;
-        (*b)[src] = 0.0;
+        double* v = b->data();
+        const double x_src = v[src];
+        if (x_src == 0.0) continue;
+        for (int a = 0; a < m; ++a) {
+          const double wj = weights(e[3 + 2 * a], k);
+          if (wj != 0.0) v[e[4 + 2 * a]] += wj * x_src;
+        }
+        v[src] = 0.0;
       }
     }
-    const int* slot = t.block.data() + i * n * n;
-    for (int j = 0; j < n; ++j)
-      for (int c = 0; c < n; ++c) {
-        const int q = slot[j * n + c];
-        if (q < 0 || d(j, c) == 0.0) continue;
-        values[static_cast<std::size_t>(q)] += cu * d(j, c);
-        if (kept[0] != nullptr) (*kept[0])[static_cast<std::size_t>(q)] += d(j, c);
-      }
+    for (const int *q = t.block.data() + t.block_first[i], *end = t.block.data() + t.block_first[i + 1]; q != end;
+         q += 2) {
+      const double dj = d.data()[q[0]];
+      if (dj == 0.0) continue;
+      values[static_cast<std::size_t>(q[1])] += cu * dj;
+      if (kept[0] != nullptr) (*kept[0])[static_cast<std::size_t>(q[1])] += dj;
+    }
   }
 }
 
