@@ -109,12 +109,16 @@ TEST_SUITE("lang/pivot") {
     CHECK(pivots.front().name == "Arm.PIVOT 1");
   }
 
-  TEST_CASE("`pradis help PIVOT` and `pradis list` show the node program with SPH3X's parameters") {
+  TEST_CASE("`pradis help PIVOT` and `pradis list` show the node program with SPH3X's parameters; `pradis check` "
+            "says it is not an element") {
     std::ostringstream os, err, list;
     CHECK(lang::print_reference(os, err, "pivot"));
     CHECK(os.str().find("PIVOT - ground pivot") != std::string::npos);
     CHECK(os.str().find("node program") != std::string::npos);
     CHECK(os.str().find("12 - z of B, body b frame [m]") != std::string::npos);
+    std::ostringstream check_out, check_err;
+    CHECK(lang::check_by_name(check_out, check_err, "PIVOT", {}) == 1);  // not an element: exit status 1
+    CHECK(check_err.str().find("PIVOT is a node program, not an element") != std::string::npos);
     lang::print_catalog(list);
     CHECK(list.str().find("Nodes with an equation") != std::string::npos);
     CHECK(list.str().find("  PIVOT    ground pivot") != std::string::npos);

@@ -190,7 +190,10 @@ inline int check_by_name(std::ostream& os, std::ostream& err, std::string_view n
   library_model::for_each_type([&]<class E>(std::type_identity<E>) {
     if (!ok && E::passport.name == n) ok = check_element_jacobian<E>(os, o);
   });
-  if (!ok)
+  if (!ok && find_program(node_programs(), n))
+    err << "pradis: error: " << n << " is a node program, not an element: `pradis check` checks elements (the "
+        << "node's equation and its carry are checked by finite differences in the test suite)\n";
+  else if (!ok)
     err << "pradis: error: no element named '" << printable(name) << "'" << did_you_mean(n, element_names())
         << "; `pradis list` shows the catalog\n";
   return ok && *ok ? 0 : 1;
