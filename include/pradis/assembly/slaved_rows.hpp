@@ -57,10 +57,11 @@ struct slaved_table {
         if (!slaved_dof<K>(k)) continue;
         const int ek = eq_of(nodes[i].dofs[static_cast<std::size_t>(k)]);
         if (ek < 0)
-          throw error(error_code::invalid_model, "the slaved DOF '" + name(nodes[i].dofs[static_cast<std::size_t>(k)]) +
-                                                     "' of a " + std::string(K::label) +
-                                                     " node is prescribed by a source (a DOF follows either its "
-                                                     "node's equation or a source, not both)");
+          throw error(error_code::invalid_model,
+                      "the slaved DOF '" + name(nodes[i].dofs[static_cast<std::size_t>(k)]) + "' of a " +
+                          std::string(K::label) +
+                          " node is prescribed by a source (a DOF follows either its node's equation or a source, "
+                          "not both)");
         if (ek < rows) owner[static_cast<std::size_t>(ek)] = static_cast<int>(i);
       }
     const std::size_t m = entries.size();
@@ -166,14 +167,14 @@ void carry_slaved_rows(const Model& m, const Nodes& nodes, const slaved_table<K>
     std::vector<double>* const buffers[4] = {&values, kept[0], kept[1], kept[2]};
     for (const int *e = t.entries.data() + t.first[i], *end = t.entries.data() + t.first[i + 1]; e != end;
          e += 3 + 2 * e[2]) {
-      const int k = e[0], m = e[2];
+      const int k = e[0], targets = e[2];
       const auto src = static_cast<std::size_t>(e[1]);
       for (std::vector<double>* b : buffers) {
         if (b == nullptr) continue;
         double* v = b->data();
         const double x_src = v[src];
         if (x_src == 0.0) continue;
-        for (int a = 0; a < m; ++a) {
+        for (int a = 0; a < targets; ++a) {
           const double wj = weights(e[3 + 2 * a], k);
           if (wj != 0.0) v[e[4 + 2 * a]] += wj * x_src;
         }
