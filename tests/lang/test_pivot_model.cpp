@@ -128,46 +128,27 @@ TEST_SUITE("lang/pivot") {
     using lang_test::expect_error;
     const std::string base = pm::pendulum_with();
     const std::string stmt = "'PIVOT (1 2 3 4 5 6; Hold)";
-    const auto bad = [&](const std::string& to) { return pm::pendulum_with(stmt, to); };
-    {
-      const std::string t = bad("'PIVOT (1 2 3 4 5; Hold)");
-      expect_error(t, pm::where(t, "1 2 3 4 5;"), {"'PIVOT needs 6 nodes", "got 5"});
-    }
-    {
-      const std::string t = bad("'PIVOT (1 2 3 4 5 6)");
-      expect_error(t, pm::where(t, "(1 2 3 4 5 6)"), {"a PIVOT needs (nodes; parameters)", "no ';'"});
-    }
-    {
-      const std::string t = bad("'PIVOT (1 0 3 4 5 6; Hold)");
-      expect_error(t, pm::where(t, "0 3 4 5 6;"), {"its node 2 cannot be the ground"});
-    }
-    {
-      const std::string t = bad("'PIVOT (1 2 3 4 5 6; Hold, 1)");
-      expect_error(t, pm::where(t, "Hold, 1)"), {"'PIVOT takes 12 parameters", "got 13"});
-    }
-    {
-      const std::string t = bad("'PIVOT (1 2 3 4 5 6; Hold)\n    Tip2 'PIVOT (1 2 3 4 5 6; Hold)");
-      expect_error(t, pm::where(t, "Tip2"), {"PIVOT 'Tip2'", "already"});
-    }
-    {
-      const std::string t = bad("'PIVOT (1 2 3 5 4 6; Hold)");
-      expect_error(t, pm::where(t, "5 4 6;"), {"nodes 5 4 6 are not the q1 q2 q3 of one spatial rotational node"});
-    }
-    {
-      const std::string t = bad("'PIVOT (1 2 3 7 5 8; Hold)");
-      expect_error(t, pm::where(t, "Tip 'PIVOT"), {"PIVOT 'Tip'", "already belongs to rotational node"});
-    }
-    {
-      const std::string t = bad("'PIVOT (1 2 3 4 5 6; Hold)\n    Tip 'PIVOT (7 8 9 10 11 12; Hold)");
-      expect_error(t, pm::where(t, "Tip 'PIVOT (7"), {"'Tip' is already defined at test.prd:"});
-    }
+    // The PIVOT statement replaced by `to`: the error is at the first `at` of the file and names `what`
+    // and `also` (empty: nothing more).
+    const auto bad = [&](const std::string& to, const std::string& at, const char* what, const char* also = "",
+                         int line = __builtin_LINE()) {
+      const std::string t = pm::pendulum_with(stmt, to);
+      expect_error(t, pm::where(t, at), {what, also}, line);
+    };
+    bad("'PIVOT (1 2 3 4 5; Hold)", "1 2 3 4 5;", "'PIVOT needs 6 nodes", "got 5");
+    bad("'PIVOT (1 2 3 4 5 6)", "(1 2 3 4 5 6)", "a PIVOT needs (nodes; parameters)", "no ';'");
+    bad("'PIVOT (1 0 3 4 5 6; Hold)", "0 3 4 5 6;", "its node 2 cannot be the ground");
+    bad("'PIVOT (1 2 3 4 5 6; Hold, 1)", "Hold, 1)", "'PIVOT takes 12 parameters", "got 13");
+    // The body's translations already slaved by another pivot (code 110 from add_ground_pivot).
+    bad("'PIVOT (1 2 3 4 5 6; Hold)\n    Tip2 'PIVOT (1 2 3 4 5 6; Hold)", "Tip2", "PIVOT 'Tip2'", "already");
+    bad("'PIVOT (1 2 3 5 4 6; Hold)", "5 4 6;", "nodes 5 4 6 are not the q1 q2 q3 of one spatial rotational node");
+    bad("'PIVOT (1 2 3 7 5 8; Hold)", "Tip 'PIVOT", "PIVOT 'Tip'", "already belongs to rotational node");
+    bad("'PIVOT (1 2 3 4 5 6; Hold)\n    Tip 'PIVOT (7 8 9 10 11 12; Hold)", "Tip 'PIVOT (7",
+        "'Tip' is already defined at test.prd:");
+    bad("'PIVTO (1 2 3 4 5 6; Hold)", "PIVTO", "unknown element model 'PIVTO'", "did you mean 'PIVOT'?");
     {
       const std::string t = pm::pendulum_with("$FRAGMENT:", "$FRAGMENT PIVOT:\n#STRUCTURE:\n$FRAGMENT:");
       expect_error(t, pm::where(t, "$FRAGMENT PIVOT"), {"fragment name PIVOT is the name of a node program"});
-    }
-    {
-      const std::string t = bad("'PIVTO (1 2 3 4 5 6; Hold)");
-      expect_error(t, pm::where(t, "PIVTO"), {"unknown element model 'PIVTO'", "did you mean 'PIVOT'?"});
     }
     CHECK(lang_test::error_of(base).empty());
   }
