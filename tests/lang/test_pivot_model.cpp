@@ -62,14 +62,27 @@ TEST_SUITE("lang/pivot") {
     CHECK(r.at(4, 3) == doctest::Approx(-0.5).epsilon(1e-12));
     CHECK(r.at(8, 2) == doctest::Approx(-1.0).epsilon(1e-9));
     CHECK(std::abs(r.at(16, 2)) < 1e-9);
+    // The pivot's force on the body, W:Tip(3) (vertical). With the arm level at rest the angular
+    // acceleration is m g l / I, the centre falls at m g l^2 / I, and the pivot carries
+    // m g (1 - m l^2 / I); at the bottom it carries the weight and the centripetal force m l w^2. It is
+    // the force of the last Newton iterate of a step, whose correction is below DRLTX.
+    const double mg = 2.0 * 9.81, at_rest = mg * (1 - 2.0 * 0.25 / 0.55), bottom = mg + 2.0 * 0.5 * peak * peak;
+    MESSAGE("pivot force Z at 0, T/4, T/2, 3T/4: ", r.at(0, 4), ", ", r.at(4, 4), ", ", r.at(8, 4), ", ", r.at(12, 4),
+            " N (", at_rest, " at rest, ", bottom, " at the bottom)");
+    CHECK(r.at(0, 4) == doctest::Approx(at_rest).epsilon(1e-6));
+    CHECK(r.at(4, 4) == doctest::Approx(bottom).epsilon(1e-6));
+    CHECK(r.at(8, 4) == doctest::Approx(at_rest).epsilon(1e-5));
+    CHECK(r.at(12, 4) == doctest::Approx(bottom).epsilon(1e-6));
   }
 
   TEST_CASE("a PIVOT gives the motion of SPH3X to the ground without its multipliers") {
     // The same body on SPH3X (body a the ground, the same 12 parameters) under the same BDF stage: the
     // ground pivot is SPH3X's reduced form, so both follow the same exact motion; the model has no
     // multipliers (3 internal DOFs fewer) and no fixed rotational node of the ground.
-    const std::string joint =
+    // The pivot's force output is SPH3X's joint force on body b along Z, its work entry 4.
+    std::string joint =
         pm::pendulum_with("Tip 'PIVOT (1 2 3 4 5 6; Hold)", "Tip 'SPH3X (0 0 0 0 0 0 1 2 3 4 5 6; Hold)");
+    joint.replace(joint.find("(W:Tip(3); 1)"), 13, "(W:Tip(4); 1)");
     auto a = lang_test::run(pm::pendulum_with());
     auto b = lang_test::run(joint);
     CHECK(b->model().dof_count() - a->model().dof_count() >= 3);
@@ -77,8 +90,14 @@ TEST_SUITE("lang/pivot") {
     for (std::size_t i = 0; i < a->results().rows(); ++i)
       for (std::size_t c = 1; c <= 3; ++c)
         worst = std::max(worst, std::abs(a->results().at(i, c) - b->results().at(i, c)));
-    MESSAGE("PIVOT against SPH3X: largest difference of the outputs ", worst);
+    double force = 0;
+    for (std::size_t i = 0; i < a->results().rows(); ++i)
+      force = std::max(force, std::abs(a->results().at(i, 4) - b->results().at(i, 4)));
+    MESSAGE("PIVOT against SPH3X: largest difference of the motion outputs ", worst, ", of the force ", force, " N");
     CHECK(worst < 1e-5);
+    // The forces come from the accelerations of the two runs' own steps (measured 2.2e-4 N): within
+    // 1e-5 of the largest, m g + m l w^2 = 55.3 N.
+    CHECK(force < 1e-5 * (2 * 9.81 + 2 * 0.5 * 2 * 2 * 9.81 * 0.5 / 0.55));
   }
 
   TEST_CASE("a PIVOT may come before the elements on its nodes, and inside a fragment instance") {
@@ -99,9 +118,9 @@ TEST_SUITE("lang/pivot") {
                              "$FRAGMENT:\n#STRUCTURE:\n    Arm 'SWING (4 5 6)\n    Start 'ROT0 (4 5 6; Release)\n";
     const auto f = sub.find("$FRAGMENT:");
     sub.replace(f, sub.find("#OUTPUT:") - f, frag);
-    const std::string centre = "    Centre Y 'X (2; 1)\n    Centre Z 'X (3; 1)\n";
-    sub.replace(sub.find(centre), centre.size(), "");
-    sub.replace(sub.find(", Centre Y, Centre Z;"), 21, ";");
+    const std::string centre = "    Centre Y 'X (2; 1)\n    Centre Z 'X (3; 1)\n    Pivot force Z 'X (W:Tip(3); 1)\n";
+    sub.replace(sub.find(centre), centre.size(), "    Arm force Z 'X (W:Arm.PIVOT 1(3); 1)\n");
+    sub.replace(sub.find(", Centre Y, Centre Z, Pivot force Z;"), 36, ";");
     auto t = lang_test::run(sub);
     CHECK(t->results().at(4, 1) == doctest::Approx(-std::sqrt(2 * 2.0 * 9.81 * 0.5 / 0.55)).epsilon(1e-6));
     const auto& pivots = t->model().nodes<elements::ground_pivot_kind>();
@@ -146,6 +165,10 @@ TEST_SUITE("lang/pivot") {
     bad("'PIVOT (1 2 3 4 5 6; Hold)\n    Tip 'PIVOT (7 8 9 10 11 12; Hold)", "Tip 'PIVOT (7",
         "'Tip' is already defined at test.prd:");
     bad("'PIVTO (1 2 3 4 5 6; Hold)", "PIVTO", "unknown element model 'PIVTO'", "did you mean 'PIVOT'?");
+    {
+      const std::string t = pm::pendulum_with("(W:Tip(3); 1)", "(W:Tip(4); 1)");
+      expect_error(t, pm::where(t, "4); 1)"), {"PIVOT 'Tip' has 3 outputs", "W:Tip(4) does not exist"});
+    }
     {
       const std::string t = pm::pendulum_with("$FRAGMENT:", "$FRAGMENT PIVOT:\n#STRUCTURE:\n$FRAGMENT:");
       expect_error(t, pm::where(t, "$FRAGMENT PIVOT"), {"fragment name PIVOT is the name of a node program"});

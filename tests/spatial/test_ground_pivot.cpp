@@ -10,8 +10,11 @@
 //   momentum about the vertical through the tip are constant, and the tip stays at the
 //   ground point, under BDF and under HHT;
 // - the zero step: a start off the pivot is moved onto it, with a warning;
+// - the pivot's force on its body (ground_pivot_force) against SPH3X's joint force on the
+//   same top, and against the weight of a body at rest above the pivot;
 // - bad input: code 110 for a slaved DOF on the ground, a DOF slaved twice, a slaved DOF
-//   prescribed by a source and a geometry that is not finite.
+//   prescribed by a source and a geometry that is not finite, and for the force of a pivot
+//   that does not exist.
 
 #include <doctest/doctest.h>
 
@@ -146,6 +149,45 @@ TEST_SUITE("spatial/ground pivot") {
     }
     const spatial::quaternion qa = spatial::node_quaternion(a, pv.r), qb = spatial::node_quaternion(b, sx.r);
     CHECK((qa - qb).norm() < 1e-12);
+  }
+
+  TEST_CASE("ground pivot: its force on the body is SPH3X's joint force, and m g on a body at rest above it") {
+    // The heavy top on both joints under BDF at DRLTX = 1e-9 to 0.2 s: the pivot's force
+    // (ground_pivot_force, the element flows on the body's x, y, z) against SPH3X's joint
+    // force on body b (its work entries 2..4). Each is the force of its driver's last Newton
+    // iterate, and the two runs take their own steps, so they agree to the integration error.
+    const run_options o{.end = 0.2, .smax = 0.01, .smin = 1e-12, .error_control = true, .dabsx = 1e-9, .drltx = 1e-9};
+    pradis_examples::spinning_top pv(gp::pivot_top());
+    pradis_examples::top_parameters xp;
+    xp.exact_joint = true;
+    pradis_examples::spinning_top sx(xp);
+    bdf_simulation a(pv.m), b(sx.m);
+    CHECK_THROWS_WITH_AS(ground_pivot_force(a, 0), doctest::Contains("has not been evaluated yet"), pradis::error);
+    a.run(o);
+    b.run(o);
+    const spatial::vec3 f = ground_pivot_force(a, 0);
+    const auto w = sx.m.work("tip");
+    const spatial::vec3 fx(w[1], w[2], w[3]);
+    MESSAGE("pivot force ", f.transpose(), " N, SPH3X joint force ", fx.transpose(), " N");
+    CHECK((f - fx).norm() < 1e-5 * pv.mass * pv.g);
+    CHECK(std::abs(f.z()) > 0.1 * pv.mass * pv.g);  // not a trivial agreement
+    try {
+      (void)ground_pivot_force(a, 1);
+      FAIL("a second pivot does not exist");
+    } catch (const pradis::error& e) {
+      CHECK(e.code() == error_code::invalid_model);
+      CHECK(e.message().find("ground pivot 1 does not exist (indices 0 to 1 - 1") != std::string::npos);
+    }
+    // A body at rest with its centre of mass 0.2 m straight above the pivot (unstable, but with
+    // nothing to tip it over): the pivot holds the weight, m g = 9.81 N up, and nothing else.
+    gp::pivot_scene p;
+    add_ground_pivot(p.m, "pin", p.geometry(), p.x[0], p.x[1], p.x[2], p.r);
+    p.m.add<spatial_force>("weight", {0, 0, -9.81, 0, 0, 0, 0, 0}, p.x[0], p.x[1], p.x[2]);
+    bdf_simulation s(p.m);
+    s.run({.end = 0.05, .smax = 0.01});
+    const spatial::vec3 up = ground_pivot_force(s, 0);
+    CHECK(up.head<2>().norm() < 1e-12);
+    CHECK(up.z() == doctest::Approx(9.81).epsilon(1e-12));
   }
 
   TEST_CASE("ground pivot: the heavy top keeps its spin, energy and vertical angular momentum, its tip on the pivot") {

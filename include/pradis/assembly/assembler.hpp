@@ -293,6 +293,12 @@ class assembler<model<Es...>> {
   const Eigen::VectorXd& abs_sum() const noexcept { return abs_sum_; }
   /// Smallest step recommended by an element in the last evaluate() (STEPMD), or infinity.
   double recommended_step() const noexcept { return recommended_step_; }
+  /// The element flows of the slaved rows of the nodes of slaving kind K at the last evaluate(),
+  /// K::size per node in the model's order (slaved_table::flows; empty before build).
+  template <class K>
+  std::span<const double> slaved_flows() const noexcept {
+    return std::get<detail::slaved_table<K>>(slaved_).flows;
+  }
 
   /// Binds an instance's work and state vectors into a context.
   template <class E>

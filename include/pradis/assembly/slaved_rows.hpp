@@ -39,6 +39,9 @@ struct slaved_table {
   /// node's block where row j is not slaved (the rows that K::carry's D reaches) and both DOFs
   /// have equations.
   std::vector<int> block_first, block;
+  /// Per node, K::size entries: the element flows of its slaved rows at the last evaluation (0 in
+  /// the other rows), before they were carried. A ground pivot's force on its body is these flows.
+  std::vector<double> flows;
 
   /// The pattern entries the carry needs: the node's other rows get every column of a slaved row.
   /// `entries` holds the (row, column) equation pairs of the elements and nodes so far; the new
@@ -83,6 +86,7 @@ struct slaved_table {
     block_first.assign(1, 0);
     entries.clear();
     block.clear();
+    flows.assign(nodes.size() * static_cast<std::size_t>(n), 0.0);
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       const auto& d = nodes[i].dofs;
       const auto eq = [&](int k) { return eq_of(d[static_cast<std::size_t>(k)]); };
@@ -123,7 +127,7 @@ struct slaved_table {
 /// assembled in full. A weight or derivative that is not finite is code 150 in the name of the
 /// node (K::label and its first slaved DOF).
 template <class K, class Model, class Nodes, class State>
-void carry_slaved_rows(const Model& m, const Nodes& nodes, const slaved_table<K>& t, const State& s, double cu,
+void carry_slaved_rows(const Model& m, const Nodes& nodes, slaved_table<K>& t, const State& s, double cu,
                        bool jac, Eigen::VectorXd& residual, Eigen::VectorXd& abs_sum, std::vector<double>& values,
                        std::vector<double>* kept[3], element_context& ctx) {
   constexpr int n = K::size;
@@ -145,6 +149,7 @@ void carry_slaved_rows(const Model& m, const Nodes& nodes, const slaved_table<K>
     w.setZero();
     for (int k = 0; k < n; ++k)
       if (slaved_dof<K>(k)) w(k) = residual(static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]));
+    std::copy(w.data(), w.data() + n, t.flows.begin() + static_cast<std::ptrdiff_t>(i * n));
     weights.setZero();
     d.setZero();
     K::carry(nodes[i], x, w, weights, jac ? &d : nullptr);

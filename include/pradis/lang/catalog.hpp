@@ -63,10 +63,11 @@ inline const std::vector<program_info>& node_programs() {
        "ground pivot: SPH3X from the ground to body b in reduced form, without multipliers; the body's "
        "translations follow its rotation (docs/joints.md)",
        "Tip 'PIVOT (1 2 3 4 5 6; Geometry)    (the 12 parameters of SPH3X, body a the ground)",
-       "Nodes (6): body b's x y z (slaved: they follow q) and q1 q2 q3; the flows on x y z are the joint "
-       "force's negative\n"
+       "Nodes (6): body b's x y z (slaved: they follow q) and q1 q2 q3\n"
        "Parameters (12, as SPH3X's; A is a fixed point of the ground, whose rotation is the identity):\n"
        PRADIS_JOINT_GEOMETRY_HELP
+       "Outputs: 'X (W:Tip(k); 1), k = 1, 2, 3: the pivot's force on the body along X, Y, Z [N] (at the last "
+       "evaluation of the step, as an element's work vector)\n"
        "A node of the body on the ground, a body DOF that is already slaved by another PIVOT, or a parameter "
        "that is not finite is an error; the body's initial translations are put on the pivot (a warning names "
        "any initial condition this replaces)\n"},
@@ -106,7 +107,8 @@ inline const std::vector<std::string>& unimplemented_run_keys() {
 /// Output programs (#OUTPUT).
 inline const std::vector<program_info>& output_programs() {
   static const std::vector<program_info> v{
-      {"X", "potential of a node (order 1 displacement, 2 velocity, 3 acceleration) or a work-vector entry",
+      {"X", "potential of a node (order 1 displacement, 2 velocity, 3 acceleration), a work-vector entry or a "
+            "PIVOT's force on its body (W:Name(1..3))",
        "Body 2 X 'X (4; 1)    Link force 'X (W:Connection(3); 1)", ""},
       {"W", "global angular velocity of a spatial rotational node about X, Y or Z (k = 1, 2, 3) [rad/s]; the node "
             "by its three rotation nodes q1 q2 q3 (0 for a fixed one)",

@@ -279,7 +279,7 @@ class model_builder {
                " after expanding $DATA lists");
     std::vector<dof> ds;
     for (int n : nodes) ds.push_back(dof{node_dof(sc, n)});
-    const std::string name = sc.prefix + (c.label.empty() ? "PIVOT " + std::to_string(++pivots_) : c.label);
+    const std::string name = sc.prefix + (c.label.empty() ? "PIVOT " + std::to_string(++unlabelled_pivots_) : c.label);
     if (auto f = element_loc_.find(name); f != element_loc_.end())
       fail(c.loc, "an element or pivot named '" + name + "' is already defined at " + f->second.str());
     const elements::detail::joint_geometry geo{par[0], par[1], par[2], par[3], par[4],  par[5],
@@ -291,6 +291,7 @@ class model_builder {
         fail(c.args[0][3].loc, "nodes " + std::to_string(nodes[3]) + " " + std::to_string(nodes[4]) + " " +
                                    std::to_string(nodes[5]) +
                                    " are not the q1 q2 q3 of one spatial rotational node, in this order");
+      pivots_[name] = model_->nodes<elements::ground_pivot_kind>().size();
       elements::add_ground_pivot(*model_, name, geo, ds[0], ds[1], ds[2], r);
     } catch (const pradis::error& e) {
       fail(c.loc, "PIVOT '" + name + "': " + e.message());
@@ -368,17 +369,15 @@ class model_builder {
           o.element = sc.prefix + target.text;
           o.index = target.index;
           if (o.order != 1) fail(c.args[1][0].loc, "a work-vector entry has only order 1 (its value)");
-          auto loc = model_->find(o.element);
-          if (!loc) {
-            std::vector<std::string> names;
-            for (const auto& [k, v] : element_loc_) names.push_back(k);
-            fail(target.loc, "no element named '" + o.element + "'" + did_you_mean(o.element, names));
+          if (auto p = pivots_.find(o.element); p != pivots_.end()) {  // a PIVOT's force on its body
+            if (o.index > 3)
+              fail(target.index_loc, "PIVOT '" + o.element + "' has 3 outputs, its force on the body along X, Y, "
+                                     "Z: W:" + target.text + "(" + std::to_string(o.index) + ") does not exist");
+            o.what = output_column::kind::pivot_force;
+            o.pivot = p->second;
+          } else {
+            work_output(o, target);
           }
-          const auto size = model_->work(o.element).size();
-          if (static_cast<std::size_t>(o.index) > size)
-            fail(target.index_loc, "element '" + o.element + "' (" + std::string(model_->type_name(*loc)) + ") has " +
-                                       std::to_string(size) + " work-vector entr" + (size == 1 ? "y" : "ies") +
-                                       "; W:" + target.text + "(" + std::to_string(o.index) + ") does not exist");
         } else {
           o.what = output_column::kind::potential;
           const int node = node_list({target}).front();
@@ -442,11 +441,27 @@ class model_builder {
     return it->second;
   }
 
+  /// Checks 'X (W:Element(k); 1): the element exists and has entry k.
+  void work_output(const output_column& o, const ast::item& target) const {
+    auto loc = model_->find(o.element);
+    if (!loc) {
+      std::vector<std::string> names;
+      for (const auto& [k, v] : element_loc_) names.push_back(k);
+      fail(target.loc, "no element named '" + o.element + "'" + did_you_mean(o.element, names));
+    }
+    const auto size = model_->work(o.element).size();
+    if (static_cast<std::size_t>(o.index) > size)
+      fail(target.index_loc, "element '" + o.element + "' (" + std::string(model_->type_name(*loc)) + ") has " +
+                                 std::to_string(size) + " work-vector entr" + (size == 1 ? "y" : "ies") + "; W:" +
+                                 target.text + "(" + std::to_string(o.index) + ") does not exist");
+  }
+
   static std::string auto_label(const ast::call& c, const output_column& o) {
     switch (o.what) {
       case output_column::kind::potential:
         return "X(" + std::to_string(o.node) + ";" + std::to_string(o.order) + ")";
       case output_column::kind::work:
+      case output_column::kind::pivot_force:
         return "X(W:" + o.element + "(" + std::to_string(o.index) + "))";
       case output_column::kind::statistic:
         return c.program;
@@ -468,7 +483,8 @@ class model_builder {
   std::vector<output_column> outputs_;
   std::map<std::string, location> output_labels_;
   std::size_t instances_ = 0;
-  int pivots_ = 0;  ///< PIVOTs without a label so far (their names)
+  int unlabelled_pivots_ = 0;                 ///< PIVOTs without a label so far (their names)
+  std::map<std::string, std::size_t> pivots_;  ///< PIVOT name -> its index among the model's ground pivots
 };
 
 }  // namespace pradis::lang

@@ -80,13 +80,14 @@ class stage_scheme : public alpha_scheme {
 
 /// One output variable (#OUTPUT line).
 struct output_column {
-  enum class kind { potential, work, statistic, angular_velocity, norm };
+  enum class kind { potential, work, statistic, angular_velocity, norm, pivot_force };
   std::string label;
   location loc;
   kind what = kind::potential;
   int node = 0, dof = 0, order = 1;  ///< potential: node, model DOF, 1 u / 2 v / 3 a
-  std::string element;               ///< work: instance name
-  int index = 0;                     ///< work: 1-based entry
+  std::string element;               ///< work: instance name; pivot_force: the PIVOT's name
+  int index = 0;                     ///< work: 1-based entry; pivot_force: 1 X, 2 Y, 3 Z
+  std::size_t pivot = 0;             ///< pivot_force: the ground pivot's index in the model
   std::string statistic;             ///< statistic: NSTEP, NITER, ...
   rotation_node rotation{};          ///< angular_velocity ('W, component in order) and norm ('LQ)
   std::string nodes;                 ///< 'W, 'LQ: the three node numbers as written, for the label

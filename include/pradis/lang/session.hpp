@@ -188,6 +188,9 @@ class session : public action_checker, public stage_drivers<session> {
         case output_column::kind::norm:
           row.push_back(spatial::node_norm(s, o.rotation));
           break;
+        case output_column::kind::pivot_force:
+          row.push_back(elements::ground_pivot_force(s, o.pivot)(o.index - 1));
+          break;
       }
     }
     if (static_cast<double>(results_.rows()) >= settings_.max_rows)

@@ -136,4 +136,24 @@ void add_ground_pivot(Model& m, std::string name, const detail::joint_geometry& 
   m.template add_node<ground_pivot_kind>(std::move(r));
 }
 
+/// The force of ground pivot i (the i-th add_ground_pivot of the model) on its body, global X, Y, Z
+/// [N], at the driver's last model evaluation: the element flows on the body's x, y, z, which the
+/// pivot carries to the moment rows (the flows balance inertia against the applied forces, m a - P,
+/// and the pivot supplies the difference). Like an element's work vector it belongs to the state of
+/// that evaluation (after a converged step, the last Newton iterate). `sim` is any driver
+/// (pradis::simulation, pradis::bdf_simulation). A pivot that does not exist, or a driver that has
+/// not run, is code 110 (as a DOF outside the model is for the drivers' u()).
+template <class Sim>
+spatial::vec3 ground_pivot_force(const Sim& sim, std::size_t i) {
+  const auto f = sim.get_assembler().template slaved_flows<ground_pivot_kind>();
+  const std::size_t count = sim.get_model().template nodes<ground_pivot_kind>().size();
+  if (i >= count)
+    throw error(error_code::invalid_model, "ground pivot " + std::to_string(i) + " does not exist (indices 0 to " +
+                                               std::to_string(count) + " - 1 in the order added)");
+  if (f.size() < 7 * (i + 1))
+    throw error(error_code::invalid_model,
+                "ground pivot " + std::to_string(i) + " has not been evaluated yet: run a stage first");
+  return {f[7 * i], f[7 * i + 1], f[7 * i + 2]};
+}
+
 }  // namespace pradis::elements
