@@ -5,7 +5,8 @@
 // points and cells the elements draw, with shared points merged; while the
 // bodies swing, the joint points that SPH3X holds together coincide in the
 // drawing (to the constraint's round-off), the drawn arms keep their lengths
-// (rigid bodies), and vtk_series::write(t, motions) refuses a wrong count.
+// (rigid bodies), and vtk_series::write(t, motions) refuses a wrong count. A
+// body on a ground pivot draws its arm, whose joint end stays on the ground point.
 
 #include <doctest/doctest.h>
 
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "pradis/elements/library.hpp"
+#include "pradis/integrators/bdf/bdf_simulation.hpp"
 #include "pradis/integrators/simulation.hpp"
 #include "pradis/elements/spatial/plate_mesh.hpp"
 #include "pradis/io/model_scene.hpp"
@@ -107,6 +109,37 @@ TEST_SUITE("io/vtk") {
       CHECK(std::string(e.message()).find("3 point motions") != std::string::npos);
     }
     std::filesystem::remove_all(std::filesystem::temp_directory_path() / "pradis_scene_test");
+  }
+
+  TEST_CASE("model_scene: a ground pivot draws its body's arm, whose joint end stays on the ground point") {
+    // The compound pendulum of examples/models/pivot_pendulum.prd in code: BODY3 at its centre of mass,
+    // (0, 0.5, 0) at the start, hung 0.5 m below the ground point A = 0 by a ground pivot (add_ground_pivot),
+    // released level. The pivot draws the arm from the centre to B: 2 points, 1 line. B stays on A and the
+    // arm keeps its length while the body swings (the node's equation holds B on A exactly).
+    using pivot_model = model<rigid_body, exact_spherical_joint, spatial_force, initial_rotation>;
+    pivot_model m;
+    const auto x = m.add_dofs(3, "x");
+    const rotation_node r = m.add_rotation_node("r");
+    m.add<rigid_body>("body", {2, 0.05, 0.05, 0.02, 0, 0, 0, 0, 0, 0}, x[0], x[1], x[2], r);
+    add_ground_pivot(m, "tip", {0, 0, 0, 0, 0, 0, 0, 0.5, 0, 0, 0, 0.5}, x[0], x[1], x[2], r);
+    m.add<spatial_force>("weight", {0, 0, -19.62, 0, 0, 0, 0, 0}, x[0], x[1], x[2]);
+    m.add<initial_rotation>("release", {1, 0, 0, 90, 0, 0, 0}, r);
+    const io::vtk_scene scene = io::model_scene(m);
+    CHECK(scene.points() == 2);
+    CHECK(scene.cells() == 1);
+    bdf_simulation sim(m);
+    double off = 0, arm = 0, drop = 0;
+    sim.on_output([&](const auto& s) {
+      const vec3 c = scene.motion(s, 0).position, b = scene.motion(s, 1).position;
+      off = std::max(off, b.norm());
+      arm = std::max(arm, std::abs((b - c).norm() - 0.5));
+      drop = std::max(drop, -c.z());
+    });
+    (void)sim.run({.end = 0.44, .out = 0.02, .smax = 0.01});
+    MESSAGE("ground pivot arm: B off A by ", off, " m, length error ", arm, " m, centre dropped ", drop, " m");
+    CHECK(drop > 0.45);  // near the bottom at T/4 = 0.439 s, 0.5 m below the pivot
+    CHECK(off < 1e-12);
+    CHECK(arm < 1e-12);
   }
 
   TEST_CASE("model_scene: a plate mesh draws one triangle per TRIPL on shared vertices that move with their DOFs") {

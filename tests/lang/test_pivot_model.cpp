@@ -174,5 +174,14 @@ TEST_SUITE("lang/pivot") {
       expect_error(t, pm::where(t, "$FRAGMENT PIVOT"), {"fragment name PIVOT is the name of a node program"});
     }
     CHECK(lang_test::error_of(base).empty());
+    // The pivot draws the body's arm (io/model_scene.hpp), so a VTK display of a model whose only spatial
+    // items are BODY3 and a PIVOT has something to draw.
+    const std::string vtk = pm::pendulum_with("$END", "    Animation 'VTK ()\n$END");
+    CHECK(lang_test::error_of(vtk).empty());
+    std::string free_body = vtk;  // the same body without its pivot: BODY3 alone draws nothing
+    for (const std::string cut : {"    Tip 'PIVOT (1 2 3 4 5 6; Hold)\n", "    Pivot force Z 'X (W:Tip(3); 1)\n",
+                                  ", Pivot force Z"})
+      free_body.erase(free_body.find(cut), cut.size());
+    CHECK(lang_test::error_of(free_body).find("VTK has nothing to draw") != std::string::npos);
   }
 }

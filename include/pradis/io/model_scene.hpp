@@ -28,6 +28,9 @@
 #include <array>
 #include <map>
 #include <set>
+#include <span>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -73,13 +76,13 @@ class scene_builder {
   std::set<std::pair<int, std::vector<int>>> cells_;
 };
 
-/// What an element's `draw` hook receives: the element's local DOF numbers are
-/// turned into the model's DOFs of one instance.
-template <class E>
-class element_drawer {
+/// What a `draw` hook receives: local DOF numbers (an element instance's, or a node's in its
+/// record's order) are turned into the model's DOFs. A node kind's hook is
+/// `template <class D> static void draw(const record&, D& d)`; ground_pivot_kind has one.
+class dof_drawer {
  public:
-  /// The drawer of instance `in` adding to `b`.
-  element_drawer(scene_builder& b, const element_instance<E>& in) : b_(b), in_(in) {}
+  /// The drawer of the DOFs `dofs` (local index -> model DOF) adding to `b`.
+  dof_drawer(scene_builder& b, std::span<const int> dofs) : b_(b), dofs_(dofs) {}
 
   /// A point that starts at x0 and moves by the translational DOFs at local
   /// indices k, k+1, k+2 (X, Y, Z). Returns its scene index.
@@ -89,16 +92,8 @@ class element_drawer {
   int point_at(const spatial::vec3& x0, const std::array<int, 3>& k) {
     return b_.point(x0, translations(k), nullptr, spatial::vec3::Zero());
   }
-  /// A point fixed in a body: the reference point starts at x0 and moves by the
-  /// translational DOFs at local k, k+1, k+2, and the body turns with the
-  /// element's rotational node `node` (an index into E::rotation_nodes); the point
-  /// sits at `offset` in the body frame: p = x0 + x + R(q) offset.
-  int body_point(const spatial::vec3& x0, int k, int node, const spatial::vec3& offset) {
-    static_assert(HasRotationNodes<E>, "body_point needs an element with rotational nodes");
-    return body_point_at(x0, {k, k + 1, k + 2}, E::rotation_nodes.at(static_cast<std::size_t>(node)), offset);
-  }
-  /// body_point() with any three local DOFs and the rotational node given by its
-  /// local slot (q1..q3 at s.q1.., q4 at s.q4).
+  /// A point fixed in a body (element_drawer::body_point) with any three local DOFs
+  /// and the rotational node given by its local slot (q1..q3 at s.q1.., q4 at s.q4).
   int body_point_at(const spatial::vec3& x0, const std::array<int, 3>& k, rotation_slot s,
                     const spatial::vec3& offset) {
     const rotation_node n{global(s.q1), global(s.q1 + 1), global(s.q1 + 2), global(s.q4), -1};
@@ -112,11 +107,37 @@ class element_drawer {
   void triangle(int a, int b, int c) { b_.cell(vtk_scene::triangle_cell, {a, b, c}); }
 
  private:
-  dof global(int k) const { return dof{in_.dofs.at(static_cast<std::size_t>(k))}; }
-  std::array<dof, 3> translations(const std::array<int, 3>& k) const { return {global(k[0]), global(k[1]), global(k[2])}; }
+  dof global(int k) const {
+    if (k < 0 || static_cast<std::size_t>(k) >= dofs_.size())
+      throw std::out_of_range("draw hook: local DOF " + std::to_string(k) + " of " + std::to_string(dofs_.size()));
+    return dof{dofs_[static_cast<std::size_t>(k)]};
+  }
+  std::array<dof, 3> translations(const std::array<int, 3>& k) const {
+    return {global(k[0]), global(k[1]), global(k[2])};
+  }
   scene_builder& b_;
-  const element_instance<E>& in_;
+  std::span<const int> dofs_;
 };
+
+/// What an element's `draw` hook receives: dof_drawer over the DOFs of one instance of E.
+template <class E>
+class element_drawer : public dof_drawer {
+ public:
+  /// The drawer of instance `in` adding to `b`.
+  element_drawer(scene_builder& b, const element_instance<E>& in) : dof_drawer(b, in.dofs) {}
+  /// A point fixed in a body: the reference point starts at x0 and moves by the
+  /// translational DOFs at local k, k+1, k+2, and the body turns with the
+  /// element's rotational node `node` (an index into E::rotation_nodes); the point
+  /// sits at `offset` in the body frame: p = x0 + x + R(q) offset.
+  int body_point(const spatial::vec3& x0, int k, int node, const spatial::vec3& offset) {
+    static_assert(HasRotationNodes<E>, "body_point needs an element with rotational nodes");
+    return body_point_at(x0, {k, k + 1, k + 2}, E::rotation_nodes.at(static_cast<std::size_t>(node)), offset);
+  }
+};
+
+/// Whether node kind K draws its nodes (has `template <class D> static void draw(const record&, D&)`).
+template <class K>
+concept drawable_node_kind = requires(const typename K::record& r, dof_drawer& d) { K::draw(r, d); };
 
 /// Whether element type E draws itself (has `template <class D> void draw(D&) const`).
 /// A composite (elements/composite.hpp) draws its parts that do.
@@ -124,7 +145,8 @@ template <class E>
 concept drawable = requires(const E& e, element_drawer<E>& d) { e.draw(d); };
 
 /// The animation geometry of model m: the points and cells drawn by every
-/// instance of every drawable element type, in the order the model lists them.
+/// instance of every drawable element type, in the order the model lists them,
+/// then by every node of a drawable node kind (a ground pivot: the body's arm).
 /// Elements without a hook (masses on scalar DOFs, sources, rigid bodies, which
 /// carry no position of their own) draw nothing; a rigid body shows through the
 /// joints, springs and contacts attached to it.
@@ -138,6 +160,13 @@ vtk_scene model_scene(const Model& m) {
       for (const auto& in : v) {
         element_drawer<E> d(b, in);
         in.element.draw(d);
+      }
+  });
+  m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
+    if constexpr (drawable_node_kind<K>)
+      for (const auto& node : nodes) {
+        dof_drawer d(b, node.dofs);
+        K::draw(node, d);
       }
   });
   return std::move(b.scene());

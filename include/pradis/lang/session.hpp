@@ -52,7 +52,7 @@ class session : public action_checker, public stage_drivers<session> {
         if (!scene_) scene_ = io::model_scene(*model_);
         if (scene_->points() == 0)
           fail(a.stage.loc, "VTK has nothing to draw: no element of the model has a geometry (BEAM3, BEAMI3, SD3, "
-                            "the spatial joints, CSPHPL, CSPHSP and TRIPL draw themselves)");
+                            "the spatial joints, PIVOT, CSPHPL, CSPHSP and TRIPL draw themselves)");
       }
   }
   session(const session&) = delete;

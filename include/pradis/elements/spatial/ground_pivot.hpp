@@ -108,6 +108,14 @@ struct ground_pivot_kind {
     const spatial::vec3 f = w.head<3>();
     d->block<3, 4>(3, 3) = -spatial::skew(f) * spatial::skew(rho) * theta;
   }
+  /// Animation geometry (io/model_scene.hpp): the body's arm, from its reference point to B (on A).
+  template <class Drawer>
+  static void draw(const record& r, Drawer& d) {
+    const rotation_slot q{3, 6};
+    const int reference = d.body_point_at(r.x0, {0, 1, 2}, q, spatial::vec3::Zero());
+    const int b = d.body_point_at(r.x0, {0, 1, 2}, q, r.rb);
+    d.line(reference, b);
+  }
   /// dc/dt = v_B = x' + omega x rho_B, the velocity of the body's point B.
   static void slaved_rate(const record& r, const node_values<7>& x, Eigen::Matrix<double, 7, 1>& rate) {
     rate.head<3>() = point(r, x, false).v;
