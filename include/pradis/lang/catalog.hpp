@@ -55,8 +55,9 @@ inline const std::vector<program_info>& integration_programs() {
 }
 
 /// Node programs (#STRUCTURE, written like an element): nodes whose equation slaves some of their
-/// DOFs to the others, with no element and no work vector of their own. `keys` holds the
-/// nodes and the parameters, as an element's help does.
+/// DOFs to the others, with no element of their own (a PIVOT's outputs, W:Name(1..3), are its
+/// force on the body). `keys` holds the nodes, the parameters and the outputs, as an element's
+/// help does.
 inline const std::vector<program_info>& node_programs() {
   static const std::vector<program_info> v{
       {"PIVOT",
