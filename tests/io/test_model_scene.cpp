@@ -6,11 +6,13 @@
 // bodies swing, the joint points that SPH3X holds together coincide in the
 // drawing (to the constraint's round-off), the drawn arms keep their lengths
 // (rigid bodies), and vtk_series::write(t, motions) refuses a wrong count. A
-// body on a ground pivot draws its arm, whose joint end stays on the ground point.
+// body on a ground pivot draws its arm, whose joint end stays on the ground point. A draw
+// hook that asks for a local DOF its element does not have is an error naming the element.
 
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include "pradis/elements/library.hpp"
@@ -22,6 +24,34 @@
 using namespace pradis;
 using namespace pradis::elements;
 using spatial::vec3;
+
+namespace model_scene_tests {
+/// A mass on one DOF whose draw hook asks for a point on local DOFs 0, 1, 2: a
+/// programming error in a hook, which model_scene reports (code 110, the element named).
+struct misdrawn_mass {
+  static constexpr pradis::passport passport{.name = "MISDRAWN", .ext = 1, .par = 1, .adr = 3};
+  static constexpr element_help help{.title = "test mass with a wrong draw hook",
+                                     .name = "test",
+                                     .field = "test",
+                                     .dofs = "1 - x",
+                                     .parameters = "1 - m",
+                                     .work = "",
+                                     .special = "code 100 never"};
+  struct parameters {
+    double m = 1;
+  } p;
+  explicit misdrawn_mass(parameters q) : p(q) {}
+  static misdrawn_mass from_parameters(std::span<const double> v) { return misdrawn_mass({v[0]}); }
+  void evaluate(const local_input<misdrawn_mass>& in, local_output<misdrawn_mass>& out, element_context&) const {
+    out.f(0) = p.m * in.a(0);
+    if (out.want_jacobian) out.M(0, 0) = p.m;
+  }
+  template <class D>
+  void draw(D& d) const {
+    d.vertex(d.point(vec3::Zero(), 0));
+  }
+};
+}  // namespace model_scene_tests
 
 TEST_SUITE("io/vtk") {
   TEST_CASE("model_scene: a double pendulum draws its joints, spring and sphere once, and the joints stay closed") {
@@ -140,6 +170,18 @@ TEST_SUITE("io/vtk") {
     CHECK(drop > 0.45);  // near the bottom at T/4 = 0.439 s, 0.5 m below the pivot
     CHECK(off < 1e-12);
     CHECK(arm < 1e-12);
+  }
+
+  TEST_CASE("model_scene: a draw hook that asks for a DOF its element lacks is code 110 naming the element") {
+    model<model_scene_tests::misdrawn_mass> m;
+    m.add<model_scene_tests::misdrawn_mass>("slider", {1.0}, m.add_dof("x"));
+    try {
+      (void)io::model_scene(m);
+      FAIL("no error for a draw hook that asks for local DOF 1 of a one-DOF element");
+    } catch (const pradis::error& e) {
+      CHECK(e.code() == error_code::invalid_model);
+      CHECK(e.message() == "the draw hook of MISDRAWN 'slider' asks for local DOF 1, which is not one of its 1 DOFs (0..0)");
+    }
   }
 
   TEST_CASE("model_scene: a plate mesh draws one triangle per TRIPL on shared vertices that move with their DOFs") {

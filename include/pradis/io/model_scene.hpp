@@ -81,8 +81,10 @@ class scene_builder {
 /// `template <class D> static void draw(const record&, D& d)`; ground_pivot_kind has one.
 class dof_drawer {
  public:
-  /// The drawer of the DOFs `dofs` (local index -> model DOF) adding to `b`.
-  dof_drawer(scene_builder& b, std::span<const int> dofs) : b_(b), dofs_(dofs) {}
+  /// The drawer of the DOFs `dofs` (local index -> model DOF) adding to `b`; `who` names the
+  /// element or node drawn in the error for a local DOF it does not have (e.g. "element 'arm'").
+  dof_drawer(scene_builder& b, std::span<const int> dofs, std::string who = {})
+      : b_(b), dofs_(dofs), who_(std::move(who)) {}
 
   /// A point that starts at x0 and moves by the translational DOFs at local
   /// indices k, k+1, k+2 (X, Y, Z). Returns its scene index.
@@ -109,7 +111,10 @@ class dof_drawer {
  private:
   dof global(int k) const {
     if (k < 0 || static_cast<std::size_t>(k) >= dofs_.size())
-      throw std::out_of_range("draw hook: local DOF " + std::to_string(k) + " of " + std::to_string(dofs_.size()));
+      throw error(error_code::invalid_model, "the draw hook of " + (who_.empty() ? std::string("a node") : who_) +
+                                                 " asks for local DOF " + std::to_string(k) + ", which is not one of its " +
+                                                 std::to_string(dofs_.size()) + " DOFs (0.." +
+                                                 std::to_string(static_cast<long>(dofs_.size()) - 1) + ")");
     return dof{dofs_[static_cast<std::size_t>(k)]};
   }
   std::array<dof, 3> translations(const std::array<int, 3>& k) const {
@@ -117,6 +122,7 @@ class dof_drawer {
   }
   scene_builder& b_;
   std::span<const int> dofs_;
+  std::string who_;
 };
 
 /// What an element's `draw` hook receives: dof_drawer over the DOFs of one instance of E.
@@ -124,7 +130,8 @@ template <class E>
 class element_drawer : public dof_drawer {
  public:
   /// The drawer of instance `in` adding to `b`.
-  element_drawer(scene_builder& b, const element_instance<E>& in) : dof_drawer(b, in.dofs) {}
+  element_drawer(scene_builder& b, const element_instance<E>& in)
+      : dof_drawer(b, in.dofs, std::string(E::passport.name) + " '" + in.name + "'") {}
   /// A point fixed in a body: the reference point starts at x0 and moves by the
   /// translational DOFs at local k, k+1, k+2, and the body turns with the
   /// element's rotational node `node` (an index into E::rotation_nodes); the point
@@ -165,7 +172,9 @@ vtk_scene model_scene(const Model& m) {
   m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
     if constexpr (drawable_node_kind<K>)
       for (const auto& node : nodes) {
-        dof_drawer d(b, node.dofs);
+        std::string who;
+        if constexpr (requires { node.name; }) who = "node '" + node.name + "'";
+        dof_drawer d(b, node.dofs, std::move(who));
         K::draw(node, d);
       }
   });
