@@ -131,12 +131,19 @@ struct top_data {
 /// F = k p_B + c p_B' (SPH3, flow +F on B: the force on the body is -F); gravity
 /// (0, 0, -m g) acts at the centre of mass. m x'' = -F + m g_vec;
 /// I omega_b' + omega_b x I omega_b = r x (-R^T F), I = diag(j1, j1, j3).
+/// The tip B of the top of state y = (x, x', q, omega_b): the penalty joint's gap vector
+/// p_B = X0 + x + R(q) r from the pivot at the origin [m] (top_rhs).
+inline vec3 top_joint_gap(const top_data& d, const double* y) {
+  const Eigen::Matrix3d rot = pradis::spatial::rotation_matrix(quaternion(y[6], y[7], y[8], y[9]));
+  return d.l * d.axis0 + vec3(y[0], y[1], y[2]) + rot * vec3(0, 0, -d.l);
+}
+
 inline void top_rhs(const top_data& d, const double* y, double* dy) {
   const quaternion q(y[6], y[7], y[8], y[9]);
   const vec3 x(y[0], y[1], y[2]), v(y[3], y[4], y[5]), w(y[10], y[11], y[12]);
   const Eigen::Matrix3d rot = pradis::spatial::rotation_matrix(q);
   const vec3 r(0, 0, -d.l);
-  const vec3 pb = d.l * d.axis0 + x + rot * r;
+  const vec3 pb = top_joint_gap(d, y);
   const vec3 vb = v + rot * w.cross(r);
   const vec3 f = d.k * pb + d.c * vb;
   const vec3 acc = -f / d.m + vec3(0, 0, -d.g);
