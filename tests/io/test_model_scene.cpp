@@ -11,8 +11,8 @@
 
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
-#include <span>
 #include <vector>
 
 #include "pradis/elements/library.hpp"
@@ -24,34 +24,6 @@
 using namespace pradis;
 using namespace pradis::elements;
 using spatial::vec3;
-
-namespace model_scene_tests {
-/// A mass on one DOF whose draw hook asks for a point on local DOFs 0, 1, 2: a
-/// programming error in a hook, which model_scene reports (code 110, the element named).
-struct misdrawn_mass {
-  static constexpr pradis::passport passport{.name = "MISDRAWN", .ext = 1, .par = 1, .adr = 3};
-  static constexpr element_help help{.title = "test mass with a wrong draw hook",
-                                     .name = "test",
-                                     .field = "test",
-                                     .dofs = "1 - x",
-                                     .parameters = "1 - m",
-                                     .work = "",
-                                     .special = "code 100 never"};
-  struct parameters {
-    double m = 1;
-  } p;
-  explicit misdrawn_mass(parameters q) : p(q) {}
-  static misdrawn_mass from_parameters(std::span<const double> v) { return misdrawn_mass({v[0]}); }
-  void evaluate(const local_input<misdrawn_mass>& in, local_output<misdrawn_mass>& out, element_context&) const {
-    out.f(0) = p.m * in.a(0);
-    if (out.want_jacobian) out.M(0, 0) = p.m;
-  }
-  template <class D>
-  void draw(D& d) const {
-    d.vertex(d.point(vec3::Zero(), 0));
-  }
-};
-}  // namespace model_scene_tests
 
 TEST_SUITE("io/vtk") {
   TEST_CASE("model_scene: a double pendulum draws its joints, spring and sphere once, and the joints stay closed") {
@@ -172,16 +144,30 @@ TEST_SUITE("io/vtk") {
     CHECK(arm < 1e-12);
   }
 
-  TEST_CASE("model_scene: a draw hook that asks for a DOF its element lacks is code 110 naming the element") {
-    model<model_scene_tests::misdrawn_mass> m;
-    m.add<model_scene_tests::misdrawn_mass>("slider", {1.0}, m.add_dof("x"));
+  TEST_CASE("model_scene: a draw hook that asks for a DOF its element or node lacks is code 110 naming it") {
+    // A hook of a one-DOF element (MASS) asking for a point on local DOFs 0, 1, 2, and a node's hook
+    // asking for DOF 3 of three: programming errors in a hook, reported instead of read past the DOFs.
+    io::scene_builder b;
+    const element_instance<point_mass> in{point_mass({1.0}), "slider", {0}};
+    io::element_drawer<point_mass> d(b, in);
     try {
-      (void)io::model_scene(m);
+      (void)d.point(vec3::Zero(), 0);
       FAIL("no error for a draw hook that asks for local DOF 1 of a one-DOF element");
     } catch (const pradis::error& e) {
       CHECK(e.code() == error_code::invalid_model);
-      CHECK(e.message() == "the draw hook of MISDRAWN 'slider' asks for local DOF 1, which is not one of its 1 DOFs (0..0)");
+      CHECK(e.message() == "the draw hook of MASS 'slider' asks for local DOF 1, which is not one of its 1 DOFs (0..0)");
     }
+    const std::array<int, 3> dofs{0, 1, 2};
+    io::dof_drawer nd(b, dofs, "node 'tip'");
+    CHECK_NOTHROW((void)nd.point(vec3::Zero(), 0));
+    try {
+      (void)nd.point_at(vec3::Zero(), {0, 1, 3});
+      FAIL("no error for a node's draw hook that asks for local DOF 3 of three");
+    } catch (const pradis::error& e) {
+      CHECK(e.code() == error_code::invalid_model);
+      CHECK(e.message() == "the draw hook of node 'tip' asks for local DOF 3, which is not one of its 3 DOFs (0..2)");
+    }
+    CHECK(b.scene().points() == 1);  // the failed calls added nothing
   }
 
   TEST_CASE("model_scene: a plate mesh draws one triangle per TRIPL on shared vertices that move with their DOFs") {
