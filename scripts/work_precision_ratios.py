@@ -10,7 +10,11 @@ looser than the cheapest front point costs that point's time (no extrapolation);
 an error tighter than the series' best is not reached. pradis's best is the
 minimum cost over all pradis series (error-controlled and fixed-step).
 
-Usage: scripts/work_precision_ratios.py [CSV] [--peer IDA] [--from 1e-3] [--to 1e-6] [--method NAME]
+Usage: scripts/work_precision_ratios.py [CSV ...] [--peer IDA] [--from 1e-3] [--to 1e-6] [--method NAME]
+CSV ...: one file, or several runs of the same sweep: each point (problem, solver,
+method, setting) then costs the minimum of its CPU times over the runs, the usual
+estimate of its undisturbed cost on a shared machine whose speed drifts between and
+within runs (its error must be the same in every run, or the script stops);
 --peer SOLVER or SOLVER/METHOD: the peer series (SOLVER alone: its first series in
 the CSV, e.g. IDA; Simbody/RKM and Simbody/CPodes select one of Simbody's two
 integrators, which only the top, topx and chain problems have);
@@ -49,7 +53,7 @@ def cost(fr, e):
 
 
 def main(argv):
-    path, peer, lo, hi, method, skip = "docs/data/work_precision.csv", "IDA", 1e-3, 1e-6, None, None
+    paths, peer, lo, hi, method, skip = [], "IDA", 1e-3, 1e-6, None, None
     i = 0
     while i < len(argv):
         a = argv[i]
@@ -64,15 +68,25 @@ def main(argv):
         elif a == "--to":
             hi = float(argv[i + 1]); i += 1
         else:
-            path = a
+            paths.append(a)
         i += 1
+    points = {}  # (problem, solver, method, setting) -> [error, least CPU time]
+    for path in paths or ["docs/data/work_precision.csv"]:
+        with open(path) as f:
+            for r in csv.DictReader(f):
+                key = (r["problem"], r["solver"], r["method"], r["setting"])
+                e, c = float(r["error"]), float(r["cpu_s"])
+                if key in points:
+                    if points[key][0] != e:
+                        sys.exit(f"{path}: {' '.join(key)} has error {e:g}, another run {points[key][0]:g}: "
+                                 "not runs of the same sweep")
+                    points[key][1] = min(points[key][1], c)
+                else:
+                    points[key] = [e, c]
     series = {}
-    with open(path) as f:
-        for r in csv.DictReader(f):
-            e, c = float(r["error"]), float(r["cpu_s"])
-            if not (0 < e < 1e300 and c > 0):
-                continue
-            series.setdefault(r["problem"], {}).setdefault((r["solver"], r["method"]), []).append((e, c))
+    for (prob, solver, meth, _), (e, c) in points.items():
+        if 0 < e < 1e300 and c > 0:
+            series.setdefault(prob, {}).setdefault((solver, meth), []).append((e, c))
     decades = []
     e = lo
     while e >= hi * 0.999:
