@@ -408,7 +408,8 @@ TEST_SUITE("spatial/exact joint family") {
   }
   namespace {  // internal linkage: the lambda below captures a type of the file's anonymous namespace
   template <class Scheme>
-  controlled_top heavy_top_under_error_control(Scheme scheme, double tol, double end = 0.2, std::ostream* log = nullptr) {
+  controlled_top heavy_top_under_error_control(Scheme scheme, double tol, double end = 0.2, std::ostream* log = nullptr,
+                                               double smin = 1e-11, newton_options newton = {}) {
     const double mass = 1.0, l = 0.1, j1 = 0.01, j3 = 0.02, w3 = 30.0, theta0 = 30 * pi / 180;
     family_model m;
     const family_body top(m, "top", mass, {j1, j1, j3});
@@ -433,7 +434,8 @@ TEST_SUITE("spatial/exact joint family") {
       out.energy = std::max(out.energy, std::abs(e - e0) / (0.5 * j3 * w3 * w3));
       out.gap = std::max(out.gap, m.work(joint)[0]);
     });
-    out.stats = sim.run({.end = end, .smax = 0.01, .error_control = true, .dabsx = tol, .drltx = tol});
+    out.stats = sim.run(
+        {.end = end, .smax = 0.01, .smin = smin, .newton = newton, .error_control = true, .dabsx = tol, .drltx = tol});
     out.rot = node_rotation(sim, top.r);
     out.omega_b = out.rot.transpose() * node_angular_velocity(sim, top.r);
     return out;
@@ -472,6 +474,27 @@ TEST_SUITE("spatial/exact joint family") {
     CHECK(angle < 1e-6);
     CHECK(rate < 1e-6);
     CHECK((r.rot * vec3::UnitZ() - vec3(0, -std::sin(pi / 6), std::cos(pi / 6))).norm() > 0.01);  // it has moved
+  }
+
+  TEST_CASE("the heavy top on SPH3X started at SMIN = 1e-12 s under HHT at 1e-8: the error test's round-off floor "
+            "lets the first steps grow") {
+    // Error control starts at SMIN. There the step's accelerations carry the round-off of the
+    // displacements over beta h^2 (Newton, with the work-precision benchmark's tolerances
+    // DABSU = DRLTU = 1e-11, holds the joint's positions to round-off), and the estimate
+    // about eps |u| / h: 2.8e-6 on q1 at h = 1e-12 s, above DRLTX = 1e-8, so the steps shrank
+    // below SMIN at t = 4e-8 s (code 141) until the test counted that floor
+    // (step_control.hpp). Checked against Euler's equations about the tip (RK4) after 0.05 s.
+    const newton_options tight{.dabsu = 1e-11, .drltu = 1e-11, .dabsi = 1e-8, .drlti = 1e-11, .itr = 8};
+    const controlled_top r = heavy_top_under_error_control(hht{-0.1}, 1e-8, 0.05, nullptr, 1e-12, tight);
+    const auto [rot, omega_b] = top_reference(0.05);
+    const double angle = Eigen::AngleAxisd(rot.transpose() * r.rot).angle();
+    const double rate = (r.omega_b - omega_b).norm() / omega_b.norm();
+    MESSAGE("HHT-0.1 from SMIN 1e-12 at 1e-8: ", r.stats.steps, " steps, rotation error ", angle, " rad, rate error ",
+            rate, ", energy ", r.energy, ", gap ", r.gap, " m");
+    CHECK(angle < 1e-6);
+    CHECK(rate < 1e-6);
+    CHECK(r.energy < 1e-8);
+    CHECK(r.gap < 1e-12);
   }
 
   TEST_CASE("error control with exact joints under undamped NEWMARK: a failure at SMIN names the cause") {

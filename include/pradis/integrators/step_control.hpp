@@ -39,7 +39,9 @@ struct error_test {
 /// DRLTX |v|; r = min tolerance / lp; next step c h r (r < 1/4), c h sqrt(r)
 /// (r <= 7), c h r^(1/4), c = 0.8, clamped to [max(SMIN, CONTROL), SMAX].
 /// DOFs marked in `skip` (per DOF index; empty: none) are left out: the
-/// multipliers of index-3 constraints.
+/// multipliers of index-3 constraints. The tolerance of a DOF also holds the
+/// round-off floor of its estimate, 4 eps |u| / h (velocity units), which
+/// matters only at steps far below the motion's scale (first steps of SMIN).
 template <Integrator Scheme, class Assembler>
 error_test local_error_test(const Scheme& scheme, const Assembler& as, const global_state& s, const global_state& s0,
                             const Eigen::VectorXd& a_prev, double h_prev, double h, const run_options& opt,
@@ -53,6 +55,7 @@ error_test local_error_test(const Scheme& scheme, const Assembler& as, const glo
   }
   error_test out;
   const double dabsx = effective_dabsx(opt);
+  constexpr double roundoff_floor = 4 * std::numeric_limits<double>::epsilon();
   // Two-step difference for the second-order estimate when the previous step is known:
   // (a_{n+1} - a_{n-1}) h / (h + h_prev) equals a_{n+1} - a_n to leading order for a
   // smooth motion, but cancels the alternating (period 2h) ringing of stiff modes that
@@ -73,7 +76,13 @@ error_test local_error_test(const Scheme& scheme, const Assembler& as, const glo
       if (opt.predict && h_prev > 0 && a_prev.size() == s0.a.size()) ap += (s0.a(d) - a_prev(d)) * h / h_prev;
       lp = 0.5 * std::abs(s0.v(d) + h * ap - s.v(d));
     }
-    const double tol = dabsx * scales[static_cast<std::size_t>(d)].potential + opt.drltx * std::abs(s.v(d));
+    // Plus the estimate's round-off floor: a step's velocities and accelerations come from its
+    // displacements, whose round-off eps |u| becomes about eps |u| / h in lp (on DOFs that
+    // index-3 constraints hold, where Newton fixes u to its round-off, all of it). A failed test
+    // below that floor would shrink the step and raise the floor: the heavy top on SPH3X started
+    // at SMIN = 1e-12 s under HHT at DRLTX = 1e-8 had lp = 2.8e-6 on q1 and stopped at SMIN.
+    const double tol = dabsx * scales[static_cast<std::size_t>(d)].potential + opt.drltx * std::abs(s.v(d)) +
+                       roundoff_floor * std::abs(s.u(d)) / h;
     if (lp > 0 && tol / lp < r) {
       r = tol / lp;
       out.worst = d;
