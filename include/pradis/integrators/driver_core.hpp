@@ -167,6 +167,9 @@ class driver_core {
   /// Per DOF: left out of the local error tests: the index-3 multipliers (index3_) and the
   /// slaved DOFs of the nodes (core/node_kind.hpp: functions of their node's other DOFs).
   const std::vector<char>& error_skip() const noexcept { return error_skip_; }
+  /// Per DOF: held by an index-3 constraint (a column of a constraint's row): Newton puts its position on the
+  /// constraint to round-off, which the local error test of the one-step schemes counts (step_control.hpp).
+  const std::vector<char>& constrained() const noexcept { return constrained_; }
   /// Sets index3_, the massless DOFs and their count from classes as dof_classes() gives them.
   void set_dof_classes(const std::vector<double>& classes) {
     index3_.assign(classes.size(), 0);
@@ -181,6 +184,14 @@ class driver_core {
         massless_[d] = 1;
         if (massless_count_++ == 0) massless_dof_ = static_cast<int>(d);
       }
+    }
+    constrained_.assign(classes.size(), 0);
+    const auto& pat = asm_.pattern();
+    for (std::size_t d = 0; d < classes.size(); ++d) {
+      const int r = index3_[d] ? asm_.equation_of(static_cast<int>(d)) : -1;
+      if (r < 0) continue;
+      for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q)
+        constrained_[static_cast<std::size_t>(asm_.dof_of(pat.col[static_cast<std::size_t>(q)]))] = 1;
     }
   }
   /// The end of the zero step: the pseudo-acceleration starts at the consistent
@@ -232,6 +243,7 @@ class driver_core {
   /// not by an integrated derivative; Hairer and Wanner, Solving ODEs II, VII.3).
   std::vector<char> index3_;
   std::vector<char> error_skip_;  // index3_ and the slaved DOFs (error_skip())
+  std::vector<char> constrained_;  // the columns of the index-3 constraints' rows (constrained())
   /// Equations with neither mass nor viscosity (algebraic, found at the zero step; index-3 multipliers and the
   /// nodes' hidden DOFs, such as the rotational q4, not counted), and the first one's DOF (-1 if none): the
   /// undamped-scheme warning of simulation::run names it.

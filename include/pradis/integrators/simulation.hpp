@@ -367,7 +367,8 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   /// the DOF and the time.
   bool error_accepts(double h) {
     const error_test e =
-        local_error_test(scheme_, asm_, s_, s0_, a_prev_, h_prev_, h, opt_, m_.scales(), this->error_skip());
+        local_error_test(scheme_, asm_, s_, s0_, a_prev_, h_prev_, h, opt_, m_.scales(), this->error_skip(),
+                         this->constrained());
     h_error_ = e.h_next;
     stats_.limiting_dof = e.worst;
     if (e.passed) return true;

@@ -39,13 +39,15 @@ struct error_test {
 /// DRLTX |v|; r = min tolerance / lp; next step c h r (r < 1/4), c h sqrt(r)
 /// (r <= 7), c h r^(1/4), c = 0.8, clamped to [max(SMIN, CONTROL), SMAX].
 /// DOFs marked in `skip` (per DOF index; empty: none) are left out: the
-/// multipliers of index-3 constraints. The tolerance of a DOF also holds the
-/// round-off floor of its estimate, 4 eps |u| / h (velocity units), which
-/// matters only at steps far below the motion's scale (first steps of SMIN).
+/// multipliers of index-3 constraints. The tolerance of a DOF marked in
+/// `constrained` (held by an index-3 constraint) also holds the round-off floor of
+/// its estimate, 4 eps |u| / h (velocity units), which matters only at steps far
+/// below the motion's time scale (first steps of SMIN).
 template <Integrator Scheme, class Assembler>
 error_test local_error_test(const Scheme& scheme, const Assembler& as, const global_state& s, const global_state& s0,
                             const Eigen::VectorXd& a_prev, double h_prev, double h, const run_options& opt,
-                            const std::vector<dof_scale>& scales, const std::vector<char>& skip = {}) {
+                            const std::vector<dof_scale>& scales, const std::vector<char>& skip = {},
+                            const std::vector<char>& constrained = {}) {
   bool second = false;
   double beta = 0;
   if constexpr (AlphaFamilyIntegrator<Scheme>) {
@@ -76,13 +78,14 @@ error_test local_error_test(const Scheme& scheme, const Assembler& as, const glo
       if (opt.predict && h_prev > 0 && a_prev.size() == s0.a.size()) ap += (s0.a(d) - a_prev(d)) * h / h_prev;
       lp = 0.5 * std::abs(s0.v(d) + h * ap - s.v(d));
     }
-    // Plus the estimate's round-off floor: a step's velocities and accelerations come from its
-    // displacements, whose round-off eps |u| becomes about eps |u| / h in lp (on DOFs that
-    // index-3 constraints hold, where Newton fixes u to its round-off, all of it). A failed test
-    // below that floor would shrink the step and raise the floor: the heavy top on SPH3X started
-    // at SMIN = 1e-12 s under HHT at DRLTX = 1e-8 had lp = 2.8e-6 on q1 and stopped at SMIN.
+    // On a DOF that an index-3 constraint holds, plus the estimate's round-off floor: Newton puts
+    // its position on the constraint to round-off, eps |u|, which reaches its velocity and
+    // acceleration, and lp, as about eps |u| / h. A failed test below that floor would shrink the
+    // step and raise the floor: the heavy top on SPH3X started at SMIN = 1e-12 s under HHT at
+    // DRLTX = 1e-8 had lp = 2.8e-6 on q1 and stopped at SMIN.
+    const bool held = static_cast<std::size_t>(d) < constrained.size() && constrained[static_cast<std::size_t>(d)];
     const double tol = dabsx * scales[static_cast<std::size_t>(d)].potential + opt.drltx * std::abs(s.v(d)) +
-                       roundoff_floor * std::abs(s.u(d)) / h;
+                       (held ? roundoff_floor * std::abs(s.u(d)) / h : 0.0);
     if (lp > 0 && tol / lp < r) {
       r = tol / lp;
       out.worst = d;
