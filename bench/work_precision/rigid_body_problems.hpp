@@ -126,11 +126,6 @@ struct top_data {
   }
 };
 
-/// y' of the top, y = (x, x', q, omega_b). The tip B = X0 + x + R(q) r, r = (0, 0, -l)
-/// (X0 = l axis0, so B starts at the origin), is held at the origin by the joint force
-/// F = k p_B + c p_B' (SPH3, flow +F on B: the force on the body is -F); gravity
-/// (0, 0, -m g) acts at the centre of mass. m x'' = -F + m g_vec;
-/// I omega_b' + omega_b x I omega_b = r x (-R^T F), I = diag(j1, j1, j3).
 /// The tip B of the top of state y = (x, x', q, omega_b): the penalty joint's gap vector
 /// p_B = X0 + x + R(q) r from the pivot at the origin [m] (top_rhs).
 inline vec3 top_joint_gap(const top_data& d, const double* y) {
@@ -138,6 +133,11 @@ inline vec3 top_joint_gap(const top_data& d, const double* y) {
   return d.l * d.axis0 + vec3(y[0], y[1], y[2]) + rot * vec3(0, 0, -d.l);
 }
 
+/// y' of the top, y = (x, x', q, omega_b). The tip B = X0 + x + R(q) r, r = (0, 0, -l)
+/// (X0 = l axis0, so B starts at the origin), is held at the origin by the joint force
+/// F = k p_B + c p_B' (SPH3, flow +F on B: the force on the body is -F); gravity
+/// (0, 0, -m g) acts at the centre of mass. m x'' = -F + m g_vec;
+/// I omega_b' + omega_b x I omega_b = r x (-R^T F), I = diag(j1, j1, j3).
 inline void top_rhs(const top_data& d, const double* y, double* dy) {
   const quaternion q(y[6], y[7], y[8], y[9]);
   const vec3 x(y[0], y[1], y[2]), v(y[3], y[4], y[5]), w(y[10], y[11], y[12]);

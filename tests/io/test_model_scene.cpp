@@ -155,7 +155,8 @@ TEST_SUITE("io/vtk") {
       FAIL("no error for a draw hook that asks for local DOF 1 of a one-DOF element");
     } catch (const pradis::error& e) {
       CHECK(e.code() == error_code::invalid_model);
-      CHECK(e.message() == "the draw hook of MASS 'slider' asks for local DOF 1, which is not one of its 1 DOFs (0..0)");
+      CHECK(e.message() ==
+            "the draw hook of MASS 'slider' asks for local DOF 1, which is not one of its 1 DOFs (0..0)");
     }
     const std::array<int, 3> dofs{0, 1, 2};
     io::dof_drawer nd(b, dofs, "node 'tip'");

@@ -82,7 +82,7 @@ class scene_builder {
 class dof_drawer {
  public:
   /// The drawer of the DOFs `dofs` (local index -> model DOF) adding to `b`; `who` names the
-  /// element or node drawn in the error for a local DOF it does not have (e.g. "element 'arm'").
+  /// element or node drawn in the error for a local DOF it does not have (e.g. "MASS 'slider'").
   dof_drawer(scene_builder& b, std::span<const int> dofs, std::string who = {})
       : b_(b), dofs_(dofs), who_(std::move(who)) {}
 
@@ -111,10 +111,10 @@ class dof_drawer {
  private:
   dof global(int k) const {
     if (k < 0 || static_cast<std::size_t>(k) >= dofs_.size())
-      throw error(error_code::invalid_model, "the draw hook of " + (who_.empty() ? std::string("a node") : who_) +
-                                                 " asks for local DOF " + std::to_string(k) + ", which is not one of its " +
-                                                 std::to_string(dofs_.size()) + " DOFs (0.." +
-                                                 std::to_string(static_cast<long>(dofs_.size()) - 1) + ")");
+      throw error(error_code::invalid_model,
+                  "the draw hook of " + (who_.empty() ? std::string("a node") : who_) + " asks for local DOF " +
+                      std::to_string(k) + ", which is not one of its " + std::to_string(dofs_.size()) + " DOFs (0.." +
+                      std::to_string(static_cast<long>(dofs_.size()) - 1) + ")");
     return dof{dofs_[static_cast<std::size_t>(k)]};
   }
   std::array<dof, 3> translations(const std::array<int, 3>& k) const {
