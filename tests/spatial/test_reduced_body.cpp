@@ -211,7 +211,10 @@ TEST_SUITE("spatial/reduced_body") {
   TEST_CASE("FLEX3: a spun-up free bar, Craig-Bampton with 4 modes, moves as 10 BEAM3 + BEAMI3 but for the centrifugal stiffening") {
     const double h = 2.5e-4, end = 0.3;
     double rel_low = 0, rel_high = 0;
-    for (double m0 : {5.0, 20.0}) {
+    // Under the sanitizers (-O0, some 200x slower) the lower torque alone: the same code paths;
+    // the growth with the spin is checked in the dev preset.
+    const std::vector<double> torques = pradis_test::sanitized ? std::vector{5.0} : std::vector{5.0, 20.0};
+    for (double m0 : torques) {
       const auto beams = spun_bar::spin_beams(m0, end, h, 10);
       const auto flex = spun_bar::spin_reduced<4>(m0, end, h, 10);
       REQUIRE(beams.size() == flex.size());
@@ -230,8 +233,10 @@ TEST_SUITE("spatial/reduced_body") {
     CHECK(rel_low < 1e-3);
     // Four times the torque, four times the spin: the relative difference grows about 16-fold, as the
     // stiffening (Omega / omega_1)^2 that FLEX3 leaves out; a reduction error would not grow with the spin.
-    CHECK(rel_high > 10 * rel_low);
-    CHECK(rel_high < 0.03);
+    if (!pradis_test::sanitized) {
+      CHECK(rel_high > 10 * rel_low);
+      CHECK(rel_high < 0.03);
+    }
   }
 
   TEST_CASE("FLEX3 with three boundary nodes and a mode passes the finite-difference Jacobian check") {

@@ -39,10 +39,10 @@ void check_one_element() {
   // five rotational nodes, each of which must keep |q| > 0.2) draws on, in the same two
   // ranges, until 150 admissible states are checked. Under the sanitizers (-O0, about 100x
   // slower: BEAM3C alone, whose every call runs a condensation, took over 20 minutes at 150
-  // states) the same checks run at 20 states drawn alternately from both ranges: that run
+  // states) the same checks run at 10 states drawn alternately from both ranges: that run
   // looks for memory errors and undefined behaviour on every element's code paths; the
   // numerical coverage is the dev preset's 150 states.
-  constexpr int trials = pradis_test::sanitized ? 20 : 200, required = pradis_test::sanitized ? 20 : 150;
+  constexpr int trials = pradis_test::sanitized ? 10 : 200, required = pradis_test::sanitized ? 10 : 150;
   for (int trial = 0; trial < trials || (checked < required && trial < 2000); ++trial) {
     local_input<E> in;
     // Large displacements and rotations: up to +-3 (m or rad); velocities and accelerations up to +-10.
