@@ -37,7 +37,7 @@ void check_one_element() {
   int checked = 0;
   // 200 random states; an element that admits fewer than 150 of them (a super-element with
   // five rotational nodes, each of which must keep |q| > 0.2) draws on, in the same two
-  // ranges, until 150 admissible states are checked. Under the sanitizers (-O0, about 100x
+  // ranges, until 150 admissible states are checked. Under the sanitizers (-O0, some 200x
   // slower: BEAM3C alone, whose every call runs a condensation, took over 20 minutes at 150
   // states) the same checks run at 10 states drawn alternately from both ranges: that run
   // looks for memory errors and undefined behaviour on every element's code paths; the
