@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "pradis/core/diagnostics.hpp"
@@ -26,6 +27,15 @@
 #include "pradis/linalg/sparsity.hpp"
 
 namespace pradis::detail {
+
+/// Calls f(std::integral_constant<int, k>) for every DOF k of a node of kind K, in order, unrolled:
+/// the slaved pattern is known at compile time.
+template <class K, class F>
+void for_each_node_dof(F&& f) {
+  [&]<int... k>(std::integer_sequence<int, k...>) {
+    (f(std::integral_constant<int, k>{}), ...);
+  }(std::make_integer_sequence<int, K::size>{});
+}
 
 /// The carry tables of the nodes of one slaving kind K.
 template <class K>
@@ -151,23 +161,28 @@ void carry_slaved_rows(const Model& m, const Nodes& nodes, slaved_table<K>& t, c
       if (slaved_dof<K>(k)) w(k) = residual(static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]));
     std::copy(w.data(), w.data() + n, t.flows.begin() + static_cast<std::ptrdiff_t>(i * n));
     weights.setZero();
-    d.setZero();
+    if (jac) d.setZero();
     K::carry(nodes[i], x, w, weights, jac ? &d : nullptr);
     // x * 0 is 0 for a finite x and NaN otherwise (a vectorised sum instead of a branch per entry).
-    const double check = (weights.array() * 0.0).sum() + (d.array() * 0.0).sum();
+    const double check = (weights.array() * 0.0).sum() + (jac ? (d.array() * 0.0).sum() : 0.0);
     if (check != 0.0) fail(nodes[i]);  // NaN != 0 too
-    for (int k = 0; k < n; ++k) {
-      if (!slaved_dof<K>(k)) continue;
-      const auto gk = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]);
-      for (int j = 0; j < n; ++j) {
-        if (slaved_dof<K>(j) || weights(j, k) == 0.0) continue;
-        const auto gj = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(j)]);
-        residual(gj) += weights(j, k) * w(k);
-        abs_sum(gj) += std::abs(weights(j, k)) * abs_sum(gk);
+    for_each_node_dof<K>([&](auto kc) {
+      constexpr int k = decltype(kc)::value;
+      if constexpr (slaved_dof<K>(k)) {
+        const auto gk = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(k)]);
+        for_each_node_dof<K>([&](auto jc) {
+          constexpr int j = decltype(jc)::value;
+          if constexpr (!slaved_dof<K>(j)) {
+            if (weights(j, k) == 0.0) return;
+            const auto gj = static_cast<Eigen::Index>(dofs[static_cast<std::size_t>(j)]);
+            residual(gj) += weights(j, k) * w(k);
+            abs_sum(gj) += std::abs(weights(j, k)) * abs_sum(gk);
+          }
+        });
+        residual(gk) = 0;
+        abs_sum(gk) = 0;
       }
-      residual(gk) = 0;
-      abs_sum(gk) = 0;
-    }
+    });
     if (!jac) continue;
     std::vector<double>* const buffers[4] = {&values, kept[0], kept[1], kept[2]};
     for (const int *e = t.entries.data() + t.first[i], *end = t.entries.data() + t.first[i + 1]; e != end;
@@ -221,16 +236,18 @@ void project_slaved(const Model& m, State& s, diagnostics& log, std::vector<doub
           K::evaluate(node, x, node_call{0.1, true}, out, ctx);
           rate = out.K * x.v;
         }
-        for (int k = 0; k < n; ++k) {
-          if (!slaved_dof<K>(k)) continue;
-          const int d = node.dofs[static_cast<std::size_t>(k)];
-          if (rhs == nullptr) {
-            s.u(static_cast<Eigen::Index>(d)) -= out.f(k);
-            continue;
+        for_each_node_dof<K>([&](auto kc) {
+          constexpr int k = decltype(kc)::value;
+          if constexpr (slaved_dof<K>(k)) {
+            const int d = node.dofs[static_cast<std::size_t>(k)];
+            if (rhs == nullptr) {
+              s.u(static_cast<Eigen::Index>(d)) -= out.f(k);
+              return;
+            }
+            const int e = eq_of(d);
+            if (e >= 0) (*rhs)[static_cast<std::size_t>(e)] = -scale * rate(k);
           }
-          const int e = eq_of(d);
-          if (e >= 0) (*rhs)[static_cast<std::size_t>(e)] = -scale * rate(k);
-        }
+        });
       }
     }
   });

@@ -117,8 +117,13 @@ struct ground_pivot_kind {
     d.line(reference, b);
   }
   /// dc/dt = v_B = x' + omega x rho_B, the velocity of the body's point B.
+  /// (attached_point's v, without its other members: this runs after every Newton update.)
   static void slaved_rate(const record& r, const node_values<7>& x, Eigen::Matrix<double, 7, 1>& rate) {
-    rate.head<3>() = point(r, x, false).v;
+    const spatial::quaternion q = x.u.segment<4>(3);
+    const spatial::vec3 rho = spatial::rotation_matrix(q) * r.rb;
+    const spatial::mat34 theta = (2.0 / q.squaredNorm()) * spatial::e_matrix(q);
+    const spatial::vec3 omega = theta * x.v.segment<4>(3);
+    rate.head<3>() = x.v.head<3>() + omega.cross(rho);
   }
 };
 static_assert(SlavingNodeKind<ground_pivot_kind>);
