@@ -28,6 +28,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <sstream>
 #include <numbers>
@@ -175,6 +176,51 @@ TEST_SUITE("integrators/bdf") {
                     << observed);
       CHECK(a.order == k);
       CHECK(observed == doctest::Approx(k).epsilon(0.1 / k));
+    }
+  }
+
+  TEST_CASE("an undamped oscillation grows under BDF3 and BDF4 and decays under BDF1, 2 and 5, by the principal root") {
+    // At constant steps the BDFk solution of u'' = -w^2 u is a sum of powers of the roots of
+    // sum_{j=1..k} (1/j) (1 - 1/x)^j = i w h; after the start the principal root r alone is
+    // left, so the amplitude sqrt(u^2 + (v / w)^2) changes by |r| per step. At w h = 0.5,
+    // |r| - 1 = -0.11, -9.6e-3, +1.1e-2, +4.8e-3, -1.2e-3 for k = 1..5 (Hairer and Wanner,
+    // Solving ODEs II, section V.2: BDF3..5 are not A-stable; BDF3 and BDF4 amplify undamped
+    // modes of small w h, docs/bdf.md "Undamped modes and the order"). r is found here from the
+    // polynomial, not from pradis.
+    const double wh = 0.5, h = wh / osc_w;
+    for (int k = 1; k <= 5; ++k) {
+      CAPTURE(k);
+      // Newton on p(x) = sum_j (1/j) (1 - 1/x)^j - i w h from x = exp(i w h), the exact rotation.
+      std::complex<double> r = std::exp(std::complex<double>(0, wh));
+      for (int it = 0; it < 50; ++it) {
+        std::complex<double> p(0, -wh), dp(0, 0);
+        const std::complex<double> d = 1.0 - 1.0 / r, dd = 1.0 / (r * r);
+        for (int j = 1; j <= k; ++j) {
+          p += std::pow(d, j) / static_cast<double>(j);
+          dp += std::pow(d, j - 1) * dd;
+        }
+        r -= p / dp;
+      }
+      oscillator osc;
+      bdf_simulation sim(osc.m, bdf_options{.max_order = k, .fixed_order = true});
+      std::vector<double> amplitude;  // at the steps of size h
+      double t_prev = 0;
+      sim.on_output([&](const auto& s) {
+        if (std::abs(s.time() - t_prev - h) < 1e-9 * h)
+          amplitude.push_back(std::hypot(s.u(osc.x), s.v(osc.x) / osc_w));
+        t_prev = s.time();
+      });
+      run_options o = fixed(400 * h, h);
+      o.out = 0;
+      sim.run(o);
+      // The start (from SMIN, growing by 1.1..2 per step) ends well within the first 150 steps; the
+      // parasitic roots (|x| <= 0.6 here) have then died out after 50 more.
+      REQUIRE(amplitude.size() > 250);
+      const std::size_t n1 = amplitude.size() - 200, n2 = amplitude.size() - 1;
+      const double per_step = std::log(amplitude[n2] / amplitude[n1]) / static_cast<double>(n2 - n1);
+      MESSAGE("BDF" << k << ": amplitude per step " << std::exp(per_step) << ", principal root " << std::abs(r));
+      CHECK(per_step == doctest::Approx(std::log(std::abs(r))).epsilon(0.02));
+      CHECK((k == 3 || k == 4) == (per_step > 0));
     }
   }
 

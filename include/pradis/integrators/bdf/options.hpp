@@ -22,7 +22,10 @@ inline constexpr int bdf_highest_order = 5;
 struct bdf_options {
   /// MAXORD: the highest order used, 1..5 (IDA's default 5). With error control
   /// the order varies between 1 and max_order; without it every step is taken
-  /// at max_order once the start has raised the order.
+  /// at max_order once the start has raised the order. BDF3 and BDF4 amplify
+  /// undamped oscillations whose period the step resolves, and the order selection
+  /// does not leave max_order for it: a model with undamped modes should not run with
+  /// 3 (docs/bdf.md, "Undamped modes and the order").
   int max_order = bdf_highest_order;
   /// Keep the order at max_order once reached (no lowering by the order
   /// selection; the start still raises it from 1 one step at a time). For tests
