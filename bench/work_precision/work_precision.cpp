@@ -91,13 +91,21 @@
 // error of the motion of interest. The numerator is the plain state error.
 //
 // Usage: work_precision [--smoke] [--out FILE] [--only PROBLEM] [--newton modified|full]
+//                       [--method M] [--tol T] [--once]
 //   (PROBLEM: pendulum, twobody, stiff, fpu, freebody, top, topx or chain)
 //   (default FILE docs/data/work_precision.csv)
 //   --smoke: loosest setting of every solver only, one timed run (CTest).
 //   --newton: pradis's Newton (default full; modified: Jacobian and factorisation reused).
+//   --method M: only the series M (a pradis method such as BDF or BDF-gpivot, or a peer
+//     solver such as IDA); --tol T: only the point at tolerance T (as in the CSV's
+//     "tol=1e-05"; fixed-step points are left out); --once: each point run once, without
+//     the warm-up and without the checks of the references. For counting instructions:
+//     valgrind --tool=callgrind --toggle-collect='wp::run_result wp::run_pradis*' work_precision --only topx --method BDF-gpivot
+//     --tol 1e-5 --once --out /tmp/point.csv (docs/bdf.md, "Cost per step").
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -959,6 +967,9 @@ inline double cpu_now() {
 struct bench {
   bool smoke = false;
   std::string only;  // run one problem only (--only NAME)
+  std::string method_only;  // run one series only (--method NAME): a pradis method or a peer solver
+  std::string setting_only;  // run one point only (--tol T): its CSV setting, "tol=1e-05"
+  bool once = false;         // one run per point, no warm-up, no checks of the references (--once)
   Eigen::VectorXd ref;    // reference state of the current problem
   Eigen::VectorXd scale;  // state whose norms scale the error
   std::ofstream csv;
@@ -974,10 +985,12 @@ struct bench {
   template <class F>
   void measure(const problem& pb, const std::string& solver, const std::string& method, const std::string& setting,
                F&& f) {
+    if (!method_only.empty() && (solver == "pradis" ? method : solver) != method_only) return;
+    if (!setting_only.empty() && setting != setting_only) return;
     run_result r;
     double best = 1e300;
-    const int reps = smoke ? 1 : 3;
-    if (!smoke) r = f();
+    const int reps = smoke || once ? 1 : 3;
+    if (!smoke && !once) r = f();
     for (int i = 0; i < reps; ++i) {
       const double t0 = cpu_now();
       r = f();
@@ -1164,12 +1177,12 @@ struct bench {
       // The RK4 references, checked (h_rk as above; Newmark steps 2 h_p, h_p).
       const double h_rk = pb.name == "freebody" ? 1e-4 : 1e-5, h_p = pb.name == "freebody" ? 5e-4 : 1e-5;
       if ((pb.name == "twobody" || pb.name == "freebody" || pb.name == "top" || pb.name == "topx") && !smoke &&
-          !check_reference(pb, h_rk, h_p)) {
+          !once && !check_reference(pb, h_rk, h_p)) {
         std::fprintf(stderr, "%s: the reference does not agree with the other methods to 1e-8\n", pb.name.c_str());
         return false;
       }
-      if (pb.name == "top" && !smoke) report_joint_gap(pb);
-      if (pb.name == "chain" && !smoke && !check_chain_reference(pb)) {
+      if (pb.name == "top" && !smoke && !once) report_joint_gap(pb);
+      if (pb.name == "chain" && !smoke && !once && !check_chain_reference(pb)) {
         std::fprintf(stderr, "chain: the reference does not agree with the other methods to 1e-8\n");
         return false;
       }
@@ -1212,13 +1225,23 @@ int main(int argc, char** argv) {
     if (a == "--smoke") b.smoke = true;
     else if (a == "--out" && i + 1 < argc) out = argv[++i];
     else if (a == "--only" && i + 1 < argc) b.only = argv[++i];
+    else if (a == "--method" && i + 1 < argc) b.method_only = argv[++i];
+    else if (a == "--tol" && i + 1 < argc) {
+      char* end = nullptr;
+      const double tol = std::strtod(argv[++i], &end);
+      if (end == argv[i] || *end != '\0' || !(tol > 0)) {
+        std::cerr << "work_precision: --tol needs a positive number, got '" << argv[i] << "'\n";
+        return 2;
+      }
+      b.setting_only = wp::bench::tolerance_label(tol);
+    } else if (a == "--once") b.once = true;
     else if (a == "--newton" && i + 1 < argc && std::string(argv[i + 1]) == "full")
       wp::newton_mode = pradis::newton_method::full, ++i;
     else if (a == "--newton" && i + 1 < argc && std::string(argv[i + 1]) == "modified")
       wp::newton_mode = pradis::newton_method::modified, ++i;
     else {
       std::cerr << "usage: work_precision [--smoke] [--out FILE] [--only pendulum|twobody|stiff|fpu|freebody|top|topx|chain]"
-                 " [--newton modified|full]\n";
+                 " [--newton modified|full] [--method NAME] [--tol T] [--once]\n";
       return 2;
     }
   }
@@ -1253,5 +1276,8 @@ int main(int argc, char** argv) {
 #endif
   if (!b.all()) return 1;
   std::printf("%d rows written to %s\n", b.rows, out.c_str());
+  if (b.rows == 0 && (!b.method_only.empty() || !b.setting_only.empty()))
+    std::cerr << "work_precision: no point matches --method '" << b.method_only << "' and --tol ('"
+              << b.setting_only << "') on " << (b.only.empty() ? "any problem" : b.only) << "\n";
   return b.rows > 0 ? 0 : 1;
 }
