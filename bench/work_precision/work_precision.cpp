@@ -100,8 +100,9 @@
 //     solver such as IDA); --tol T: only the point at tolerance T (as in the CSV's
 //     "tol=1e-05"; fixed-step points are left out); --once: each point run once, without
 //     the warm-up and without the checks of the references. For counting instructions:
-//     valgrind --tool=callgrind --toggle-collect='wp::run_result wp::run_pradis*' work_precision --only topx --method BDF-gpivot
-//     --tol 1e-5 --once --out /tmp/point.csv (docs/bdf.md, "Cost per step").
+//     valgrind --tool=callgrind --toggle-collect='wp::run_result wp::run_pradis*'
+//     work_precision --only topx --method BDF-gpivot --tol 1e-5 --once --out /tmp/point.csv
+//     (docs/bdf.md, "Cost per step").
 
 #include <Eigen/Dense>
 #include <algorithm>
