@@ -33,11 +33,22 @@ struct attached_point {
   spatial::mat34 dp_dq;     ///< dp/dq = dv/dq'
   spatial::mat34 dv_dq;     ///< dv/dq
 
+  /// Which derivatives a constructor computes; the others hold NaN.
+  enum class level {
+    none,      ///< p, v, r, rho, omega and theta only (flows only: local_output::want_jacobian false)
+    position,  ///< also dp_dq (elements whose Jacobian needs no dv/dq, such as the exact joints)
+    all        ///< also domega_dq and dv_dq
+  };
+
   /// Evaluates everything at (x, x', q, q'); q must not be near zero. Without
   /// `derivatives` (flows only: local_output::want_jacobian false) domega_dq, dp_dq
   /// and dv_dq are not computed and hold NaN.
   attached_point(const spatial::vec3& x0, const spatial::vec3& a, const spatial::vec3& x, const spatial::vec3& xd,
-                 const spatial::quaternion& q, const spatial::quaternion& qd, bool derivatives = true) {
+                 const spatial::quaternion& q, const spatial::quaternion& qd, bool derivatives = true)
+      : attached_point(x0, a, x, xd, q, qd, derivatives ? level::all : level::none) {}
+  /// Evaluates (x, x', q, q') with the derivatives of `d` (see level); q must not be near zero.
+  attached_point(const spatial::vec3& x0, const spatial::vec3& a, const spatial::vec3& x, const spatial::vec3& xd,
+                 const spatial::quaternion& q, const spatial::quaternion& qd, level d) {
     using namespace spatial;
     const double s = q.squaredNorm();
     r = rotation_matrix(q);
@@ -46,16 +57,21 @@ struct attached_point {
     theta = (2.0 / s) * e_matrix(q);
     omega = theta * qd;
     v = xd + omega.cross(rho);
-    if (!derivatives) {
-      constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    if (d == level::none) {
       domega_dq.setConstant(nan);
       dp_dq.setConstant(nan);
       dv_dq.setConstant(nan);
       return;
     }
-    domega_dq = -(2.0 / s) * (e_matrix(qd) + omega * q.transpose());
     const mat3 rx = skew(rho);
     dp_dq = -rx * theta;
+    if (d == level::position) {
+      domega_dq.setConstant(nan);
+      dv_dq.setConstant(nan);
+      return;
+    }
+    domega_dq = -(2.0 / s) * (e_matrix(qd) + omega * q.transpose());
     dv_dq = -skew(omega) * rx * theta - rx * domega_dq;
   }
 };
@@ -124,11 +140,18 @@ void two_point_flows(const attached_point& a, const attached_point& b, const spa
 template <class In>
 std::pair<attached_point, attached_point> two_points(const In& in, const spatial::vec3& xa0, const spatial::vec3& ra,
                                                      const spatial::vec3& xb0, const spatial::vec3& rb,
-                                                     bool derivatives = true) {
+                                                     attached_point::level d) {
   return {attached_point(xa0, ra, in.u.template segment<3>(0), in.v.template segment<3>(0),
-                         slot_quaternion(in.u, 3, 12), slot_quaternion(in.v, 3, 12), derivatives),
+                         slot_quaternion(in.u, 3, 12), slot_quaternion(in.v, 3, 12), d),
           attached_point(xb0, rb, in.u.template segment<3>(6), in.v.template segment<3>(6),
-                         slot_quaternion(in.u, 9, 13), slot_quaternion(in.v, 9, 13), derivatives)};
+                         slot_quaternion(in.u, 9, 13), slot_quaternion(in.v, 9, 13), d)};
+}
+/// two_points with all derivatives, or none without `derivatives`.
+template <class In>
+std::pair<attached_point, attached_point> two_points(const In& in, const spatial::vec3& xa0, const spatial::vec3& ra,
+                                                     const spatial::vec3& xb0, const spatial::vec3& rb,
+                                                     bool derivatives = true) {
+  return two_points(in, xa0, ra, xb0, rb, derivatives ? attached_point::level::all : attached_point::level::none);
 }
 
 /// Whether both quaternions of a two-body element (slots 3/12 and 9/13) are far from zero

@@ -151,7 +151,9 @@ struct exact_joint : Kind {
     using namespace spatial;
     if (!two_quaternions_admissible_strict(in))
       ctx.singular("Lq near zero: the quaternion norm |q| of a rotational node has vanished");
-    const auto ab = this->p.geo.points(in, out.want_jacobian);  // flows use no derivative
+    // The flows use no derivative of the points, the rows only dp/dq (exact_constraint_rows.hpp).
+    using level = attached_point::level;
+    const auto ab = this->p.geo.points(in, out.want_jacobian ? level::position : level::none);
     const joint_bodies s{ab.first, ab.second};
     begin_exact_joint(out);
     constexpr int rows = Kind::passport.ent - 2;

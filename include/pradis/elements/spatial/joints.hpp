@@ -69,8 +69,13 @@ struct joint_geometry {
   /// `derivatives` is false: see attached_point).
   template <class In>
   std::pair<attached_point, attached_point> points(const In& in, bool derivatives = true) const {
+    return points(in, derivatives ? attached_point::level::all : attached_point::level::none);
+  }
+  /// The two attached points with the derivatives of `d` (attached_point::level).
+  template <class In>
+  std::pair<attached_point, attached_point> points(const In& in, attached_point::level d) const {
     return two_points(in, spatial::vec3(xa0, ya0, za0), spatial::vec3(rax, ray, raz), spatial::vec3(xb0, yb0, zb0),
-                      spatial::vec3(rbx, rby, rbz), derivatives);
+                      spatial::vec3(rbx, rby, rbz), d);
   }
 };
 
