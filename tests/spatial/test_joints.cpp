@@ -368,7 +368,7 @@ TEST_SUITE("spatial/joints") {
     compare(revolute_joint(revolute_joint::example()));
   }
 
-  TEST_CASE("attached_point without derivatives: the same point and velocities, the derivatives NaN") {
+  TEST_CASE("attached_point without derivatives or at the position level: the same point and velocities, the missing derivatives NaN") {
     const vec3 x0(0.1, -0.2, 0.3), a(0.4, 0.5, -0.6), x(0.01, 0.02, -0.03), xd(0.5, -0.1, 0.2);
     const quaternion q(0.1, -0.2, 0.3, 0.9), qd(0.3, 0.1, -0.2, 0.05);
     const pradis::elements::detail::attached_point full(x0, a, x, xd, q, qd), bare(x0, a, x, xd, q, qd, false);
@@ -381,5 +381,15 @@ TEST_SUITE("spatial/joints") {
     CHECK(bare.domega_dq.hasNaN());
     CHECK(bare.dp_dq.hasNaN());
     CHECK(bare.dv_dq.hasNaN());
+    // The position level (the exact joints' Jacobians): dp/dq as with all derivatives, the
+    // velocity derivatives NaN.
+    using level = pradis::elements::detail::attached_point::level;
+    const pradis::elements::detail::attached_point pos(x0, a, x, xd, q, qd, level::position);
+    CHECK(pos.p == full.p);
+    CHECK(pos.v == full.v);
+    CHECK(pos.theta == full.theta);
+    CHECK(pos.dp_dq == full.dp_dq);
+    CHECK(pos.domega_dq.hasNaN());
+    CHECK(pos.dv_dq.hasNaN());
   }
 }
