@@ -368,7 +368,7 @@ TEST_SUITE("spatial/joints") {
     compare(revolute_joint(revolute_joint::example()));
   }
 
-  TEST_CASE("attached_point without derivatives or at the position level: the same point and velocities, the missing derivatives NaN") {
+  TEST_CASE("attached_point without derivatives or at its position level: the missing derivatives are NaN") {
     const vec3 x0(0.1, -0.2, 0.3), a(0.4, 0.5, -0.6), x(0.01, 0.02, -0.03), xd(0.5, -0.1, 0.2);
     const quaternion q(0.1, -0.2, 0.3, 0.9), qd(0.3, 0.1, -0.2, 0.05);
     const pradis::elements::detail::attached_point full(x0, a, x, xd, q, qd), bare(x0, a, x, xd, q, qd, false);
