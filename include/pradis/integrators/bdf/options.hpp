@@ -25,8 +25,8 @@ struct bdf_options {
   /// at max_order once the start has raised the order. BDF3 and BDF4 amplify
   /// undamped oscillations whose period the step resolves, and the order selection
   /// does not leave max_order for it: a model with undamped modes should not run with
-  /// 3 or 4 (under error control a 20 Hz mode grew by 63 % in 20 s at 3, by 6 % at 4;
-  /// docs/bdf.md, "Undamped modes and the order").
+  /// 3 or 4 (docs/bdf.md, "Undamped modes and the order", with what it did to an
+  /// undamped mode under error control).
   int max_order = bdf_highest_order;
   /// Keep the order at max_order once reached (no lowering by the order
   /// selection; the start still raises it from 1 one step at a time). For tests
