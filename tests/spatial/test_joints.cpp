@@ -371,25 +371,25 @@ TEST_SUITE("spatial/joints") {
   TEST_CASE("attached_point without derivatives or at its position level: the missing derivatives are NaN") {
     const vec3 x0(0.1, -0.2, 0.3), a(0.4, 0.5, -0.6), x(0.01, 0.02, -0.03), xd(0.5, -0.1, 0.2);
     const quaternion q(0.1, -0.2, 0.3, 0.9), qd(0.3, 0.1, -0.2, 0.05);
-    const pradis::elements::detail::attached_point full(x0, a, x, xd, q, qd), bare(x0, a, x, xd, q, qd, false);
-    CHECK(bare.p == full.p);
-    CHECK(bare.v == full.v);
-    CHECK(bare.rho == full.rho);
-    CHECK(bare.omega == full.omega);
-    CHECK(bare.theta == full.theta);
+    using point = pradis::elements::detail::attached_point;
+    const point full(x0, a, x, xd, q, qd);
     CHECK(full.dv_dq.allFinite());
-    CHECK(bare.domega_dq.hasNaN());
-    CHECK(bare.dp_dq.hasNaN());
-    CHECK(bare.dv_dq.hasNaN());
-    // The position level (the exact joints' Jacobians): dp/dq as with all derivatives, the
-    // velocity derivatives NaN.
-    using level = pradis::elements::detail::attached_point::level;
-    const pradis::elements::detail::attached_point pos(x0, a, x, xd, q, qd, level::position);
-    CHECK(pos.p == full.p);
-    CHECK(pos.v == full.v);
-    CHECK(pos.theta == full.theta);
-    CHECK(pos.dp_dq == full.dp_dq);
-    CHECK(pos.domega_dq.hasNaN());
-    CHECK(pos.dv_dq.hasNaN());
+    // Without derivatives, and at the position level (the exact joints' Jacobians: dp/dq as
+    // with all derivatives).
+    for (const point::level l : {point::level::none, point::level::position}) {
+      CAPTURE(static_cast<int>(l));
+      const point p = l == point::level::none ? point(x0, a, x, xd, q, qd, false) : point(x0, a, x, xd, q, qd, l);
+      CHECK(p.p == full.p);
+      CHECK(p.v == full.v);
+      CHECK(p.rho == full.rho);
+      CHECK(p.omega == full.omega);
+      CHECK(p.theta == full.theta);
+      if (l == point::level::none)
+        CHECK(p.dp_dq.hasNaN());
+      else
+        CHECK(p.dp_dq == full.dp_dq);
+      CHECK(p.domega_dq.hasNaN());
+      CHECK(p.dv_dq.hasNaN());
+    }
   }
 }
