@@ -100,9 +100,8 @@ TEST_SUITE("integrators/bdf") {
                         << r.fast_largest << ", " << r.steps << " steps");
       if (k == 3 || k == 4) {
         // The documented weakness: the resolved fast mode grows, by much more than the
-        // tolerance, while the slow mode stays accurate.
+        // tolerance, while the slow mode stays accurate (below).
         CHECK(r.fast_end > (k == 3 ? 1.3 : 1.02));
-        CHECK(std::abs(r.slow - 1) < 1e-4);
       } else {
         // A-stable BDF1 and BDF2, and BDF5 at the steps its error test allows here: the
         // fast mode never rises above its initial amplitude (beyond the tolerance).
