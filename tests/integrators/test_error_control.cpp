@@ -227,6 +227,28 @@ TEST_CASE("error control on a stiff damped system (1 Hz and 100 kHz): few steps 
   CHECK(rejections > 0);  // the controller did reject steps
 }
 
+TEST_CASE("error control: where the local error vanishes the step jumps from SMIN to SMAX before any rejection") {
+  // A free mass at constant velocity has zero acceleration, so the local error estimate is
+  // zero at every step. PRADIS's rule then proposes SMAX; max_step_growth (step_control.hpp)
+  // bounds the growth only after the run's first error rejection (tested on a contact:
+  // tests/spatial/test_sphere_contact.cpp, "CSPHPL: the Hunt-Crossley rebound ...").
+  msd_model m;
+  const dof x = m.add_dof("x");
+  m.add<point_mass>("mass", {1.0}, x);
+  m.add<initial_velocity>("v0", {3.0}, x);
+  simulation sim(m, newmark{});
+  std::vector<double> steps;
+  sim.on_step([&](const auto& s) { steps.push_back(s.statistics().last_step); });
+  const double smin = 1e-9, smax = 1e-2;
+  sim.run({.end = 0.1, .smax = smax, .smin = smin, .newton = rel_newton, .error_control = true, .drltx = 1e-6});
+  REQUIRE(steps.size() >= 3);
+  CHECK(sim.statistics().error_rejections == 0);
+  CHECK(steps[0] == doctest::Approx(smin));
+  CHECK(steps[1] == doctest::Approx(smax));
+  // Uniform motion: Newmark integrates it exactly.
+  CHECK(sim.u(x) == doctest::Approx(0.3).epsilon(1e-12));
+}
+
 TEST_CASE("error control: SMIN cannot reach an impossible tolerance -> step_too_small naming the DOF and the time") {
   msd_model m;
   const dof x = m.add_dof("slider");

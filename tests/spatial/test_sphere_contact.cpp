@@ -263,6 +263,18 @@ TEST_SUITE("spatial/sphere contact") {
     const double mass = 0.5, r = 0.05, k = 5e6, v = 2.0, alpha = 0.15, chi = 1.5 * alpha;
     floor_scene sc(mass, 0.4 * mass * r * r, on_floor(r + 1e-3, r, 2, k, alpha, 0, 0, mass), vec3::Zero(), {0, 0, -v});
     simulation<contact_model, alpha_family> sim(sc.m, alpha_family(hht{-0.05}));
+    // After the first error rejection no accepted step exceeds max_step_growth times the accepted
+    // step just before it (a step redone after a rejection is not compared: it follows the rejected one).
+    double h_last = 0, worst_growth = 0;
+    long rejections_before = 0;
+    sim.on_step([&](const auto& s) {
+      const double h = s.statistics().last_step;
+      const long rejections = s.statistics().error_rejections;
+      if (rejections > 0 && rejections == rejections_before && h_last > 0)
+        worst_growth = std::max(worst_growth, h / h_last);
+      h_last = h;
+      rejections_before = rejections;
+    });
     sim.run({.end = 0.01, .out = 0, .smax = 1e-3, .newton = tight_newton, .error_control = true, .drltx = 1e-7});
     // chi v_out + ln(1 - chi v_out) = -chi v + ln(1 + chi v), 0 < v_out < v: bisection.
     const double rhs = -chi * v + std::log1p(chi * v);
@@ -276,6 +288,16 @@ TEST_SUITE("spatial/sphere contact") {
             1 - alpha * v, ")");
     CHECK(sc.work()[0] < 0);
     CHECK(sim.v(sc.b.x[2]) / v == doctest::Approx(e).epsilon(1e-4));
+    // The free flight has no local error, and the contact's step recommendation ends the step
+    // that reaches it inside the contact. Without a bound on the step's growth the control
+    // alternated between that step (rejected) and one of 1e-4 of it (accepted, no error):
+    // 16,999 rejections in 20,203 steps. With max_step_growth (step_control.hpp): 11 in 3,236.
+    MESSAGE("steps ", sim.statistics().steps, ", error rejections ", sim.statistics().error_rejections,
+            ", largest growth after the first rejection ", worst_growth);
+    CHECK(sim.statistics().error_rejections > 0);
+    CHECK(worst_growth <= max_step_growth * (1 + 1e-12));
+    CHECK(sim.statistics().error_rejections < 100);
+    CHECK(sim.statistics().steps < 5000);
   }
 
   TEST_CASE("CSPHPL: a ball thrown sliding without spin rolls after 2 v0 / (7 mu g) with 5/7 v0") {

@@ -371,7 +371,11 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
                          this->constrained());
     h_error_ = e.h_next;
     stats_.limiting_dof = e.worst;
-    if (e.passed) return true;
+    if (e.passed) {
+      // After the run's first error rejection the step grows by at most max_step_growth per step.
+      if (stats_.error_rejections > 0) h_error_ = std::min(h_error_, max_step_growth * h);
+      return true;
+    }
     const double floor = std::max(opt_.smin, opt_.control);
     if (h <= floor * (1 + 1e-12)) {
       if (opt_.control > opt_.smin) return true;  // CONTROL: accept at the floor
