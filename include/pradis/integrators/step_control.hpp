@@ -32,8 +32,8 @@ struct error_test {
 /// rule alone, which proposes SMAX at once where the estimate vanishes, so that a run started
 /// at SMIN reaches its step in one or two steps). A ball falling under error control onto a
 /// contact whose step recommendation ends the step that reaches it inside the contact
-/// otherwise alternated between that step, rejected with an estimate 1e4 times the
-/// tolerance, and a step of 1e-4 of it, accepted with no error in the free flight: 16,999
+/// otherwise alternated between that step, rejected with an estimate 1.7e4 times the
+/// tolerance, and a step of 4.6e-5 of it, accepted with no error in the free flight: 16,999
 /// rejections in 20,203 steps (tests/spatial/test_sphere_contact.cpp, "CSPHPL: the
 /// Hunt-Crossley rebound ..."); with the bound 11 in 3,236. PRADIS's rule proposes more
 /// than 10 h only where the estimate is below 1/24,414 of the tolerance ((10 / 0.8)^4).
