@@ -134,11 +134,11 @@ inline std::string num(double x) {
 }
 }  // namespace detail
 
-/// Checks a stage's options; returns the message of the first invalid one
-/// (the simulation throws it as invalid_option, prefixed by the scheme name).
 /// The DABSX a stage uses: the one set, else DRLTX (see run_options::dabsx).
 inline double effective_dabsx(const run_options& o) noexcept { return o.dabsx.value_or(o.drltx); }
 
+/// Checks a stage's options; returns the message of the first invalid one
+/// (the simulation throws it as invalid_option, prefixed by the scheme name).
 inline std::optional<std::string> check_options(const run_options& o) {
   using detail::num;
   auto bad = [](double x) { return !std::isfinite(x); };

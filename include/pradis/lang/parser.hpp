@@ -25,8 +25,13 @@ inline const std::vector<std::string>& section_names() {
   return v;
 }
 
+/// The recursive-descent parser of one source file: appends its sections to `prog`,
+/// parsing each $INCLUDE file with a parser of its own (depth + 1). Use parse_file or
+/// parse_string rather than this class directly; errors are lang_error with the
+/// file:line:column of the offending text.
 class parser {
  public:
+  /// Deepest $INCLUDE nesting accepted (an include cycle ends here with an error).
   static constexpr int max_include_depth = 16;
 
   parser(std::shared_ptr<const source_file> src, ast::program& prog, const file_loader& load, int depth = 0)
