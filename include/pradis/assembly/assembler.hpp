@@ -47,12 +47,12 @@ struct global_state {
 
 /// Facts the assembler hands to every element call (time, step number, ...).
 struct call_info {
-  double time = 0;
-  double step = 0;
-  long nstep = 0;
-  int niter = 0;
-  bool want_jacobian = true;
-  diagnostics* log = nullptr;
+  double time = 0;              ///< TIME of the call
+  double step = 0;              ///< STEP, the current step
+  long nstep = 0;               ///< NSTEP, the step number (0 at the zero step)
+  int niter = 0;                ///< NITER, the Newton iteration within the step
+  bool want_jacobian = true;    ///< assemble the whole Newton matrix into values()
+  diagnostics* log = nullptr;   ///< where element warnings and errors are written (nullptr: nowhere)
   double dabsi = 0.1;  ///< DABSI of the run: sets Mu of the rotational nodes' norm equation (spatial::norm_viscosity)
   /// Without want_jacobian: per element type (in the model's order), the types whose Jacobians are
   /// assembled into values() anyway, the others left out (a partial Jacobian: complete only on the rows

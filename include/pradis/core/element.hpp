@@ -244,7 +244,10 @@ enum class phase { zero_step, new_integration, step };
 /// their own.
 class element_context {
  public:
+  /// A context without identity or diagnostics log (tests, tools).
   element_context() = default;
+  /// A context for the element type `type` (its passport name) and instance `instance`;
+  /// warnings and errors also go to `log` if given. Both views must outlive the context.
   element_context(std::string_view type, std::string_view instance, diagnostics* log = nullptr)
       : type_(type), instance_(instance), log_(log) {}
 
@@ -264,12 +267,16 @@ class element_context {
   std::span<double> new_state{};
 
   // ---- identity ----------------------------------------------------------
+  /// The element type (passport name) that errors and warnings are reported for.
   std::string_view element_type() const noexcept { return type_; }
+  /// The instance name that errors and warnings are reported for.
   std::string_view instance() const noexcept { return instance_; }
+  /// Sets the type and instance of the next calls (the views must outlive their use).
   void set_identity(std::string_view type, std::string_view instance) noexcept {
     type_ = type;
     instance_ = instance;
   }
+  /// Sets the diagnostics log that fail() and warn() write to (nullptr: none).
   void set_diagnostics(diagnostics* log) noexcept { log_ = log; }
 
   // ---- services ------------------------------------------------------------
@@ -314,6 +321,7 @@ class element_context {
    private:
     element_context& c_;
   };
+  /// Whether a mute_guard is alive (diagnostics are not written).
   bool muted() const noexcept { return muted_ > 0; }
 
  private:
@@ -325,7 +333,7 @@ class element_context {
 
 /// Kinematics a source element prescribes on its DOF at a time.
 struct kinematics {
-  double u = 0, v = 0, a = 0;
+  double u = 0, v = 0, a = 0;  ///< displacement, velocity and acceleration
 };
 
 /// Initial values an element may set at the zero step (initial-condition elements).
@@ -338,9 +346,13 @@ class initial_values {
   void set_displacement(int k, double value) { u_[k] = value; has_u_[k] = true; }
   /// Requests the initial velocity of local DOF k.
   void set_velocity(int k, double value) { v_[k] = value; has_v_[k] = true; }
+  /// Whether an initial displacement of local DOF k was requested.
   bool has_displacement(int k) const { return has_u_[k]; }
+  /// Whether an initial velocity of local DOF k was requested.
   bool has_velocity(int k) const { return has_v_[k]; }
+  /// The requested initial displacement of local DOF k (0 if none).
   double displacement(int k) const { return u_[k]; }
+  /// The requested initial velocity of local DOF k (0 if none).
   double velocity(int k) const { return v_[k]; }
 
  private:

@@ -64,6 +64,8 @@ constexpr std::string_view to_string(error_code c) noexcept {
 /// `pradis error 100 (invalid parameter) in LINKD 'link': stiffness k = -5 must be >= 0`.
 class error : public std::runtime_error {
  public:
+  /// An error with its code, plain message, element type and instance (empty for kernel
+  /// errors) and equation/DOF index (-1: none).
   error(error_code code, std::string message, std::string element_type = {},
         std::string instance = {}, long dof = -1)
       : std::runtime_error(format(code, message, element_type, instance)),

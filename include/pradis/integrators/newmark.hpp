@@ -38,7 +38,8 @@ struct newmark_parameters {
 
 /// The four parameters of the alpha family.
 struct alpha_parameters {
-  double alpha_m = 0, alpha_f = 0, beta = 0.25, gamma = 0.5;
+  double alpha_m = 0, alpha_f = 0;  ///< the weights of the inertia and of the other flows at t_n
+  double beta = 0.25, gamma = 0.5;   ///< the Newmark weights of the displacement and the velocity
 };
 
 /// Common implementation of the alpha family with velocity as the Newton unknown.
@@ -116,6 +117,7 @@ class hht : public alpha_scheme {
                   "HHT alpha = " + to_text(alpha) + " is outside its valid range [-1/3, 0]");
     p_ = {0.0, -alpha, (1.0 - alpha) * (1.0 - alpha) / 4.0, (1.0 - 2.0 * alpha) / 2.0};
   }
+  /// The HHT parameter alpha given to the constructor.
   double alpha() const noexcept { return alpha_; }
 
  private:
@@ -138,6 +140,7 @@ class generalized_alpha : public alpha_scheme {
     const double am = (2 * rho_inf - 1) / (rho_inf + 1), af = rho_inf / (rho_inf + 1);
     p_ = {am, af, (1 - am + af) * (1 - am + af) / 4, 0.5 - am + af};
   }
+  /// The spectral radius at infinity given to the constructor.
   double rho_inf() const noexcept { return rho_; }
 
  private:

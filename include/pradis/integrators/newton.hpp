@@ -39,7 +39,7 @@ namespace pradis {
 
 /// The result of Newton on one step.
 struct newton_result {
-  bool converged = false;
+  bool converged = false;        ///< the corrector met its tolerances
   int iterations = 0;            ///< corrections of the (last) attempt
   std::optional<error> failure;  ///< a singular situation or matrix that ended the attempt
 };

@@ -64,7 +64,9 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
       core::new_integration, core::raise;
 
  public:
+  /// The model type the simulation runs.
   using model_type = model<Es...>;
+  /// A callback at output times or steps (on_output, on_step).
   using observer = std::function<void(const simulation&)>;
 
   /// Binds the simulation to a model (which must outlive it).

@@ -34,6 +34,7 @@ namespace pradis::io {
 /// message without the location) let a caller re-locate it.
 class table_csv_error : public error {
  public:
+  /// The error at `file`:`line`:`column` (0, 0: the file could not be opened) with the message `detail`.
   table_csv_error(const std::string& file, int line, int column, const std::string& detail)
       : error(error_code::io_error, locate(file, line, column) + detail),
         file_(file),

@@ -17,11 +17,11 @@ struct item {
     keyed,   ///< KEY = value: `END=1`; `value` holds the value (a number or name item)
     work     ///< a work-vector entry W:Name(k): `text` is the element name, `index` is k
   };
-  kind what = kind::number;
-  location loc;
-  double number = 0;
+  kind what = kind::number;  ///< which of the forms above
+  location loc;              ///< where the item starts
+  double number = 0;         ///< number: its value
   std::string text;  ///< name, key (upper case) or element name
-  bool negate = false;
+  bool negate = false;       ///< name: written with a leading '-'
   int index = 0;            ///< work: k
   location index_loc;       ///< work: where k is
   std::vector<item> value;  ///< keyed: exactly one item

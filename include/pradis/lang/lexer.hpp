@@ -42,9 +42,9 @@ enum class tok {
 /// One token. For sections and subsections `text` is the keyword in upper case;
 /// for strings the contents without quotes.
 struct token {
-  tok kind = tok::eof;
-  std::string text;
-  location loc;
+  tok kind = tok::eof;  ///< what the token is
+  std::string text;     ///< its text (see above)
+  location loc;         ///< where it starts
 };
 
 /// Human-readable description of a token for messages ("'('", "end of line", "'Body'").

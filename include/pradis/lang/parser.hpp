@@ -34,6 +34,7 @@ class parser {
   /// Deepest $INCLUDE nesting accepted (an include cycle ends here with an error).
   static constexpr int max_include_depth = 16;
 
+  /// A parser of `src` into `prog`; $INCLUDE files are read with `load`, at nesting `depth`.
   parser(std::shared_ptr<const source_file> src, ast::program& prog, const file_loader& load, int depth = 0)
       : src_(std::move(src)), t_(lex(src_)), prog_(prog), load_(load), depth_(depth) {}
 

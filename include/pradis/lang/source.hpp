@@ -87,9 +87,9 @@ inline std::string printable(std::string_view s) {
 
 /// A position in a source: file, 1-based line and column (columns count bytes).
 struct location {
-  std::shared_ptr<const source_file> file;
-  int line = 0;
-  int col = 0;
+  std::shared_ptr<const source_file> file;  ///< the source (nullptr: an input without a file)
+  int line = 0;                             ///< 1-based line (0: unknown)
+  int col = 0;                              ///< 1-based column in bytes
 
   /// `file:line:column` (or just the file name when the line is unknown).
   std::string str() const {
@@ -104,6 +104,7 @@ struct location {
 /// The message is passed through printable(): no binary bytes, no huge tokens.
 class lang_error : public std::runtime_error {
  public:
+  /// The error `message` at `loc`.
   lang_error(location loc, std::string message)
       : std::runtime_error(printable(loc.str()) + ": error: " + printable(message)),
         loc_(std::move(loc)),

@@ -52,6 +52,7 @@ class model {
   /// The element types of this model.
   using element_types = type_list<Es...>;
 
+  /// An empty model with its ground DOF.
   model() { add_dof("ground"); }
 
   /// The ground DOF (index 0), fixed at zero displacement.

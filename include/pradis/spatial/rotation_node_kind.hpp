@@ -33,14 +33,15 @@ class rotation_node_registry;
 /// hidden q4: f = Mu (q . q') / Lq with dF/dq' = Mu q / Lq and
 /// dF/dq = Mu (q' / Lq - (q . q') q / Lq^3), Mu = norm_viscosity(DABSI).
 struct rotation_node_kind {
-  using record = rotation_node_record;
-  using registry = rotation_node_registry;
-  static constexpr int size = 4;
-  static constexpr std::string_view label = "ROTATION NODE";
-  static constexpr std::array<bool, 4> hidden{false, false, false, true};
-  static constexpr std::array<bool, 4> rows{false, false, false, true};
-  static constexpr std::array<double, 4> start{0, 0, 0, 1};
-  static constexpr bool inertial_block = true;
+  // The NodeKind members (core/node_kind.hpp):
+  using record = rotation_node_record;      ///< one node: its DOFs q1..q4 and its first element
+  using registry = rotation_node_registry;  ///< the model's nodes of this kind
+  static constexpr int size = 4;            ///< q1..q4
+  static constexpr std::string_view label = "ROTATION NODE";  ///< the kind's name in messages
+  static constexpr std::array<bool, 4> hidden{false, false, false, true};  ///< q4 is hidden
+  static constexpr std::array<bool, 4> rows{false, false, false, true};    ///< the norm equation in q4's row
+  static constexpr std::array<double, 4> start{0, 0, 0, 1};               ///< the identity rotation
+  static constexpr bool inertial_block = true;  ///< q1..q3 are inertial where the node's inertia block reaches their rows
 
   /// The norm equation's flow on q4 and (call.want_jacobian) its row of dF/du and
   /// dF/dv; only row 3 of out is written. Lq near zero (lq_near_zero) or far from 1

@@ -50,8 +50,8 @@ struct jacobian_entry {
 
 /// Result of a check.
 struct jacobian_check_result {
-  bool ok = true;
-  std::vector<jacobian_entry> entries;
+  bool ok = true;                       ///< every entry within tolerance and every declared structure held
+  std::vector<jacobian_entry> entries;  ///< every compared entry
   std::vector<std::string> problems;  ///< one sentence per failure
   double max_scaled_error = 0;        ///< max |diff| / block scale over all entries
 

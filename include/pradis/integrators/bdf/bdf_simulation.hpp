@@ -90,7 +90,9 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       core::new_integration, core::raise;
 
  public:
+  /// The model type the driver runs.
   using model_type = model<Es...>;
+  /// A callback at output times or steps (on_output, on_step).
   using observer = std::function<void(const bdf_simulation&)>;
   /// The method's name in messages.
   static constexpr std::string_view name = "BDF";
