@@ -245,7 +245,7 @@ TEST_SUITE("pneumatic/bad input") {
     md.add<displacement_source>("drive", {-0.2, 1.0, 0.0, 0.0}, x);  // x reaches -0.1 m (V = 0) at t = 1/12
     simulation sim(md);
     check_error(error_from([&] { sim.run(pneumatic_step(0.25, 1e-3)); }), error_code::singular_situation, "PNCHP",
-                "ch", "not positive");
+                "ch", "the chamber volume");
   }
 
   TEST_CASE("two chambers with different initial pressures on one node are refused with code 90") {
