@@ -152,8 +152,8 @@ inline std::optional<std::string> check_options(const run_options& o) {
   if (bad(n.drltu) || n.drltu < 0) return "DRLTU = " + num(n.drltu) + " must be >= 0";
   if (bad(n.dabsi) || n.dabsi < 0) return "DABSI = " + num(n.dabsi) + " must be >= 0";
   if (bad(n.drlti) || n.drlti < 0) return "DRLTI = " + num(n.drlti) + " must be >= 0";
-  if (n.dabsu + n.drltu <= 0 || n.dabsi + n.drlti <= 0)
-    return "Newton tolerances DABSU+DRLTU and DABSI+DRLTI must not both be zero";
+  if (n.dabsu + n.drltu <= 0) return "the Newton tolerances DABSU and DRLTU must not both be zero";
+  if (n.dabsi + n.drlti <= 0) return "the Newton tolerances DABSI and DRLTI must not both be zero";
   if (n.itr < 1) return "ITR = " + std::to_string(n.itr) + " must be >= 1";
   if (bad(n.max_rate) || !(n.max_rate > 0 && n.max_rate < 1))
     return "the Newton rate limit " + num(n.max_rate) + " must be in (0, 1)";
