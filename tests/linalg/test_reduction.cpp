@@ -157,6 +157,25 @@ TEST_SUITE("linalg/reduction") {
           std::string::npos);
   }
 
+  TEST_CASE("a reduction near the largest double stays finite or is refused as non-finite") {
+    // Every DOF on the boundary: K_r = K, also for K = 1e308 (the symmetrisation halves
+    // before it adds, so K + K^T does not overflow).
+    const Eigen::MatrixXd big = Eigen::MatrixXd::Constant(1, 1, 1e308), one = Eigen::MatrixXd::Identity(1, 1);
+    const linalg::reduced_part r = linalg::guyan(big, one, {0});
+    CHECK(r.k(0, 0) == 1e308);
+    CHECK(r.m(0, 0) == 1.0);
+    // K = [[1e308, 1e308], [1e308, 1]] held at DOF 0: K_r = 1e308 - 1e308^2 / 1 overflows.
+    Eigen::MatrixXd k2(2, 2);
+    k2 << 1e308, 1e308, 1e308, 1;
+    try {
+      (void)linalg::guyan(k2, Eigen::MatrixXd::Identity(2, 2), {0});
+      FAIL("no error");
+    } catch (const error& e) {
+      CHECK(e.code() == error_code::non_finite);
+      CHECK(e.message().find("the reduced K or M is not finite") != std::string::npos);
+    }
+  }
+
   TEST_CASE("Matrix Market files round-trip exactly and each defect is located at file:line:column") {
     Eigen::MatrixXd k, m;
     cantilever(6, k, m);

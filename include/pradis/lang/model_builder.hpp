@@ -313,7 +313,7 @@ class model_builder {
       fail(c.loc, "an instance of fragment " + f.name + " needs a label (it prefixes the names inside)");
     for (const auto& s : sc.stack)
       if (s == f.name) fail(c.program_loc, "fragment " + f.name + " instantiates itself");
-    if (sc.stack.size() > 32) fail(c.program_loc, "fragments nested more than 32 levels deep");
+    if (sc.stack.size() >= 32) fail(c.program_loc, "fragments nested more than 32 levels deep");  // stack: levels above
     if (!f.has_external) fail(f.loc, "fragment " + f.name + " is used as a sub-structure but has no #EXTERNAL nodes");
     if (++instances_ > max_instances)
       fail(c.loc, "more than " + std::to_string(max_instances) + " fragment instances (do nested instances multiply?)");

@@ -130,9 +130,13 @@ reduced_part craig_bampton(const Eigen::MatrixXd& k, const Eigen::MatrixXd& m, c
   }
   r.k = r.t.transpose() * k * r.t;
   r.m = r.t.transpose() * m * r.t;
-  // Symmetric to round-off by construction; make it exact.
-  r.k = 0.5 * (r.k + r.k.transpose()).eval();
-  r.m = 0.5 * (r.m + r.m.transpose()).eval();
+  // Symmetric to round-off by construction; make it exact (halves first: K + K^T of a
+  // finite K near the largest double would overflow).
+  r.k = (0.5 * r.k + 0.5 * r.k.transpose()).eval();
+  r.m = (0.5 * r.m + 0.5 * r.m.transpose()).eval();
+  if (!r.k.allFinite() || !r.m.allFinite())
+    throw error(error_code::non_finite,
+                "craig_bampton: the reduced K or M is not finite (the reduction overflows the range of double)");
   return r;
 }
 
