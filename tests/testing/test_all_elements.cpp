@@ -2,13 +2,18 @@
 // list pradis::elements::library_elements, so a new element is covered
 // automatically) passes the finite-difference Jacobian check at many random
 // states, has help text whose line counts match its passport, and rejects bad
-// flat parameter counts; the claims of inert and guard-state elements hold at every
-// state. Reference: PRADIS element developer's manual, 3.6.8.
+// flat parameter counts (code 101 from the model's flat path, model::add_flat and
+// add_by_name, which the model language uses: too few, and too many or of the wrong
+// parity where PAR/VPR bounds them); the claims of inert and guard-state elements
+// hold at every state. Reference: PRADIS element developer's manual, 3.6.8.
 
 #include <doctest/doctest.h>
 
+#include <optional>
 #include <random>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "pradis/elements/library.hpp"
 #include "pradis/testing/jacobian_check.hpp"
@@ -17,6 +22,53 @@
 using namespace pradis;
 
 namespace {
+
+/// Bad flat parameter counts: placing E from a flat PAR vector, as the model language does (model::add_flat<E>,
+/// and add_by_name with its catalog name, which the language builder calls), with too few parameters (PAR - 1),
+/// and with too many (PAR + 1: for VPR = 0 too many, for VPR = 11 or 21 the wrong parity; VPR = 1 has no upper
+/// bound) must throw code 101 naming the element type and the instance, before the element is built from the
+/// vector. The rule's own count, PAR, must not be refused with code 101 (the values, all 1, may be refused
+/// otherwise: add_flat builds the element but runs no NEWINT).
+template <class E>
+void check_flat_parameter_counts() {
+  constexpr passport p = E::passport;
+  static_assert(p.parameter_count_ok(p.par), "PAR itself must satisfy the passport's PAR/VPR rule");
+  library_model m;
+  const std::vector<dof> ds(static_cast<std::size_t>(p.ext), m.ground());
+  std::vector<int> bad;
+  if (p.par > 0) bad.push_back(p.par - 1);
+  if (p.vpr == 0 || p.vpr == 11 || p.vpr == 21) bad.push_back(p.par + 1);
+  CHECK(!bad.empty());
+  for (const int n : bad) {
+    CAPTURE(n);
+    REQUIRE(!p.parameter_count_ok(n));
+    const std::vector<double> par(static_cast<std::size_t>(n), 1.0);
+    const std::string mention = "got " + std::to_string(n) + " parameters";
+    for (const bool by_name : {false, true}) {
+      CAPTURE(by_name);
+      const std::optional<error> e = pradis_test::error_of([&] {
+        if (by_name)
+          m.add_by_name(p.name, "count", ds, par);
+        else
+          m.add_flat<E>("count", ds, par);
+      });
+      REQUIRE_MESSAGE(e.has_value(), "a flat parameter count of ", n, " was accepted");
+      INFO("what(): ", std::string(e->what()));
+      CHECK(e->code() == error_code::parameter_count);
+      CHECK(e->number() == 101);
+      CHECK(e->element_type() == std::string(p.name));
+      CHECK(e->instance() == "count");
+      CHECK(e->message().find(mention) != std::string::npos);
+    }
+  }
+  CHECK(m.element_count() == 0);  // nothing was placed
+  const std::vector<double> par(static_cast<std::size_t>(p.par), 1.0);
+  const std::optional<error> ok = pradis_test::error_of([&] { m.add_flat<E>("count", ds, par); });
+  if (ok) {
+    INFO("what(): ", std::string(ok->what()));
+    CHECK(ok->code() != error_code::parameter_count);
+  }
+}
 
 template <class E>
 void check_one_element() {
@@ -30,6 +82,7 @@ void check_one_element() {
   if (p.vpr == 0) CHECK(help_lines(E::help.parameters) == p.par);
   if (!E::help.work.empty()) CHECK(help_lines(E::help.work) == p.wrk);
   CHECK(!E::help.special.empty());
+  check_flat_parameter_counts<E>();
 
   testing::jacobian_checker<E> chk{E(E::example())};
   std::mt19937 rng(12345);
