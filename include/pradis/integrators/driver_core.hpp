@@ -141,7 +141,8 @@ class driver_core {
     hidden_dof_velocities(m_, asm_, s_, opt_.newton.dabsi, log_, set_v);
     slaved_dof_start(m_, asm_, s_, opt_.newton.dabsi, log_, set_u, set_v);
     const std::vector<char> kind = initial_derivatives(
-        m_, asm_, solver, s_, rhs_, stats_, log_, [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
+        m_, asm_, solver, s_, rhs_, stats_, log_, opt_.newton.dabsi,
+        [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
     warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);
     std::vector<double> classes(static_cast<std::size_t>(m_.dof_count()), 0.0);
     const std::vector<char> hidden = m_.hidden_dofs(true);  // a node's hidden or slaved DOF: not counted as massless

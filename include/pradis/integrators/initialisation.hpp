@@ -22,6 +22,7 @@
 #include "pradis/core/node_kind.hpp"
 #include "pradis/integrators/node_start.hpp"
 #include "pradis/integrators/options.hpp"
+#include "pradis/integrators/start_newton.hpp"
 
 namespace pradis::detail {
 
@@ -152,46 +153,13 @@ bool mark_index3_multipliers(const Pattern& pat, const std::vector<double>& mval
   return any;
 }
 
-/// The right-hand side of the kind-3 rows: minus the second time derivative of
-/// each constraint g(u) along u(t) = u0 + t v0 + t^2 a0 / 2 (that is G a0 + (dG/dt) v0),
-/// by central second differences at the steps e and e / 2 with Richardson
-/// extrapolation (error O(e^4)). e = 1e-3 s, smaller for fast motions.
-template <class Assembler, class Evaluate>
-void constraint_accelerations(Assembler& as, global_state& s, const std::vector<char>& kind, std::vector<double>& rhs,
-                              Evaluate& evaluate) {
-  const int ne = as.equations();
-  const Eigen::VectorXd u0 = s.u;
-  const double vmax = s.v.template lpNorm<Eigen::Infinity>(), amax = s.a.template lpNorm<Eigen::Infinity>();
-  double e = 1e-3;
-  if (vmax > 0) e = std::min(e, 0.05 / vmax);
-  if (amax > 0) e = std::min(e, std::sqrt(0.1 / amax));
-  std::vector<double> g0(kind.size()), d[2];
-  auto rows_at = [&](double t, std::vector<double>& out) {
-    s.u = u0 + t * s.v + (0.5 * t * t) * s.a;
-    evaluate(jacobian_coefficients{0, 0, 0}, false);
-    for (int i = 0; i < ne; ++i) out[static_cast<std::size_t>(i)] = as.residual()(as.dof_of(i));
-  };
-  rows_at(0.0, g0);
-  std::vector<double> gp(kind.size()), gm(kind.size());
-  for (int k = 0; k < 2; ++k) {
-    const double h = k == 0 ? e : e / 2;
-    rows_at(h, gp);
-    rows_at(-h, gm);
-    d[k].resize(kind.size());
-    for (std::size_t i = 0; i < kind.size(); ++i) d[k][i] = (gp[i] - 2 * g0[i] + gm[i]) / (h * h);
-  }
-  s.u = u0;
-  evaluate(jacobian_coefficients{0, 0, 0}, false);
-  for (std::size_t i = 0; i < kind.size(); ++i)
-    if (kind[i] == 3) rhs[i] = -(4 * d[1][i] - d[0][i]) / 3;
-}
-
 /// Consistent initial derivatives at the zero step. The unknown of each free
 /// DOF is its acceleration if it has inertia (dF/da diagonal nonzero), else its
 /// velocity if it has viscosity (a first-order DOF, e.g. the series point of a
 /// spring and a damper), else nothing (an algebraic DOF: its equation is met
-/// by Newton at the first step). One Newton step on F(u0, v0, a0, 0) = 0 with
-/// J = M (inertial columns) + C (viscous columns) + I (algebraic columns).
+/// by Newton at the first step). Newton on F(u0, v0, a0, 0) = 0 with
+/// J = M (inertial columns) + C (viscous columns) + I (algebraic columns): one
+/// step, and more while viscous DOFs have nonlinear flows (refine_start).
 /// Without it the trapezoidal u-v relation of the Newmark family would carry
 /// an inconsistent start as an undamped oscillation of v.
 /// Index-3 constraint rows (mark_index3_multipliers) take part too: their
@@ -207,7 +175,7 @@ void constraint_accelerations(Assembler& as, global_state& s, const std::vector<
 template <class Model, class Assembler, class Solver, class Evaluate>
 std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, global_state& s,
                                       std::vector<double>& rhs, run_statistics& stats, diagnostics& log,
-                                      Evaluate&& evaluate) {
+                                      double dabsi, Evaluate&& evaluate) {
   if constexpr (!Assembler::any_m && !Assembler::any_c) {
     return std::vector<char>(static_cast<std::size_t>(as.equations()), 0);  // every DOF is algebraic
   } else {
@@ -244,15 +212,9 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
     }
     std::vector<double> rhs0 = rhs;
     std::vector<double> j(mvals.size(), 0.0);
+    const double r_start = start_residual(m, as, kind);
     for (;;) {
-      for (int r = 0; r < ne; ++r)
-        for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
-          const int c = pat.col[static_cast<std::size_t>(q)];
-          const auto sq = static_cast<std::size_t>(q);
-          const char k = kind[static_cast<std::size_t>(c)];
-          if (kind[static_cast<std::size_t>(r)] == 3) j[sq] = k == 1 ? kvals[sq] : 0.0;
-          else j[sq] = k == 1 ? mvals[sq] : (k == 2 || k == 3 ? cvals[sq] : (r == c ? 1.0 : 0.0));
-        }
+      start_matrix(pat, kind, mvals, cvals, kvals, j);
       rhs = rhs0;
       hidden_dof_rows(m, as, s, j, rhs);
       try {
@@ -262,12 +224,7 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
         bool finite = true;
         for (double x : rhs) finite = finite && std::isfinite(x);
         if (!finite) throw error(error_code::singular_matrix, "non-finite initial derivatives");
-        for (int i = 0; i < ne; ++i) {
-          const auto d = as.dof_of(i);
-          const double z = rhs[static_cast<std::size_t>(i)];
-          if (kind[static_cast<std::size_t>(i)] == 1) s.a(d) += z;
-          if (kind[static_cast<std::size_t>(i)] == 2 || kind[static_cast<std::size_t>(i)] == 3) s.v(d) += z;
-        }
+        add_start_correction(as, kind, rhs, 1.0, s);
         break;
       } catch (const error& e) {
         if (e.code() != error_code::singular_matrix) throw;
@@ -288,6 +245,8 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
         return {};
       }
     }
+    refine_start(m, as, solver, s, rhs, stats, log, evaluate, kind, mvals, cvals, kvals, r_start, dabsi);
+    viscous_rates(m, as, solver, s, stats, log, evaluate, kind, mvals, cvals);
     return kind;
   }
 }

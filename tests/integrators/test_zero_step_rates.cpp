@@ -1,0 +1,99 @@
+// The zero step's rates of viscous DOFs (integrators/start_newton.hpp, viscous_rates):
+// a massless point s between a spring k (to a mass at x) and a damper c (to the ground)
+// obeys k (s - x) + c s' = 0, so its velocity is fixed by the state, s' = k (x - s) / c,
+// and its rate by the derivative of that equation, s'' = k (x' - s') / c. With x(0) = x0,
+// s(0) = 0 and x'(0) = 0: s'(0) = k x0 / c and s''(0) = -k^2 x0 / c^2 (the Maxwell
+// element's relaxation, e.g. Findley, Lai and Onaran, Creep and Relaxation of Nonlinear
+// Viscoelastic Materials, 1976, ch. 5). Both drivers start from these values.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "pradis/elements/library.hpp"
+#include "pradis/integrators/bdf/bdf_simulation.hpp"
+#include "pradis/integrators/simulation.hpp"
+
+using namespace pradis;
+using namespace pradis::elements;
+
+namespace {
+/// A viscous flow without a root: f = 1 + atan(v) / 2 lies in (1 - pi/4, 1 + pi/4) [N].
+template <class = void>
+struct zsr_no_root_t {
+  static constexpr pradis::passport passport{.name = "NOROOT", .ext = 1, .par = 0, .adr = 2, .ign = 3};
+  static constexpr element_help help{.title = "viscous flow without a root",
+                                     .name = "f = 1 + atan(v) / 2",
+                                     .field = "mechanics",
+                                     .dofs = "1 - the DOF",
+                                     .parameters = "none",
+                                     .work = "none",
+                                     .special = "none"};
+  struct parameters {};
+  parameters p;
+  explicit zsr_no_root_t(parameters q = {}) : p(q) {}
+  static parameters example() { return {}; }
+  static zsr_no_root_t from_parameters(std::span<const double>) { return zsr_no_root_t{}; }
+  void evaluate(const local_input<zsr_no_root_t>& in, local_output<zsr_no_root_t>& out, element_context&) const {
+    out.f(0) = 1 + 0.5 * std::atan(in.v(0));
+    if (out.want_jacobian) out.C(0, 0) = 0.5 / (1 + in.v(0) * in.v(0));
+  }
+};
+using zsr_no_root = zsr_no_root_t<>;
+}  // namespace
+
+TEST_SUITE("integrators/zero step") {
+  TEST_CASE("a massless point between a spring and a damper starts with s' = k x0 / c and s'' = -k^2 x0 / c^2") {
+    const double k = 40, c = 2, m = 3, x0 = 0.05;
+    for (const bool bdf : {false, true}) {
+      CAPTURE(bdf);
+      model<point_mass, linear_spring, linear_damper, initial_displacement> md;
+      const dof x = md.add_dof("x"), s = md.add_dof("s");
+      md.add<point_mass>("mass", {m}, x);
+      md.add<linear_spring>("spring", {k}, x, s);
+      md.add<linear_damper>("damper", {c}, s, md.ground());
+      md.add<initial_displacement>("x0", {x0}, x);
+      double vs = 0, as = 0, ax = 0;
+      auto at_start = [&](const auto& r) {
+        if (r.time() == 0) vs = r.v(s), as = r.a(s), ax = r.a(x);
+      };
+      const run_options o{.end = 1e-3, .out = 1e-3, .smax = 1e-4};
+      if (bdf) {
+        bdf_simulation sim(md);
+        sim.on_output(at_start);
+        sim.run(o);
+      } else {
+        simulation sim(md);
+        sim.on_output(at_start);
+        sim.run(o);
+      }
+      CHECK(vs == doctest::Approx(k * x0 / c).epsilon(1e-14));
+      CHECK(ax == doctest::Approx(-k * x0 / m).epsilon(1e-14));
+      CHECK(as == doctest::Approx(-k * k * x0 / (c * c)).epsilon(1e-9));
+    }
+  }
+
+  TEST_CASE("a viscous DOF whose flow has no root: the zero step warns and the first step fails in Newton") {
+    model<zsr_no_root> md;
+    const dof v = md.add_dof("v");
+    md.add<zsr_no_root>("noroot", {}, v);
+    simulation sim(md);
+    std::ostringstream log;
+    sim.log().to(log);
+    bool failed = false;
+    try {
+      sim.run({.end = 1e-3, .smax = 1e-4});
+    } catch (const error& e) {
+      failed = true;
+      CHECK(e.code() == error_code::newton_failure);
+      // The flow left is its infimum 1 - pi/4 (v far below zero), not a NaN.
+      CHECK(std::string(e.what()).find("largest residual 0.2146") != std::string::npos);
+    }
+    CHECK(failed);
+    CAPTURE(log.str());
+    CHECK(log.str().find("warning: the zero step's Newton iterations on the initial derivatives stopped converging") !=
+          std::string::npos);
+  }
+}
