@@ -14,32 +14,14 @@
 /// pradis::simulation, with du/dv = 1/c, da/dv = c: the Newton matrix is
 /// J = (1/c) K + C + c M, assembled by the same assembler.
 ///
-/// Error control (IDA's): the local error estimate C_k |y - y_p| in the weighted
-/// RMS norm over the displacements and the velocities of all free DOFs, with
-/// the weights 1 / (DRLTX |x| + DABSX s) per component, x the value at the
-/// step's start and s the DOF's nominal potential (dof_scale::potential; for a
-/// displacement, the potential times one second; the multipliers of index-3
-/// constraints left out; index-3 constraints are met in the stabilised
-/// index-2 form, constraints.hpp, or in the plain form with the velocities of
-/// their DOFs weighted by min(1, h), see set_weights()). The step and the order
-/// (1..max_order) follow IDA's rules; the step never exceeds SMAX or an
-/// element's recommended step (unless IGNORE) and ends exactly at every output
-/// time (OUT) and at END. CONTROL (run_options::control): no step below it is
-/// chosen for accuracy, and a step at or below it passes the error test;
-/// PREDICT does not apply (invalid_option). A rotational node whose quaternion
-/// norm drifted is scaled back to Lq = 1 with its history (rotations.hpp).
-///
-/// Newton (IDA's): modified Newton with the Jacobian and its factorisation kept
-/// across iterations and steps; the iteration converges when
-/// rate / (1 - rate) |dy| <= bdf_options::newton_tolerance in the error norm
-/// (bdf_options::raise_test_tolerance on a step whose correction enters the
-/// order-raise test), and fails when the rate exceeds newton_options::max_rate or after
-/// newton_options::itr iterations. The Jacobian is refreshed when c changed by
-/// more than bdf_options::coefficient_change (default: at all) since the factorisation (a kept
-/// one has its corrections scaled by 2 / (1 + c / c_J); made at the new c from kept blocks where
-/// bdf_options::reform_jacobian applies), when a node turned by bdf_options::turn_refresh,
-/// at the start of every stage and before a failed step is redone. PRADIS's DABSU/DRLTU/DABSI/DRLTI
-/// are not used, nor is newton_options::method (always modified Newton).
+/// Error control, step and order follow IDA's rules: a weighted RMS norm over the
+/// displacements and velocities of the free DOFs with per-DOF weights (set_weights();
+/// index-3 multipliers and slaved DOFs left out; index-3 constraints in the stabilised
+/// index-2 form, constraints.hpp). Newton is IDA's modified Newton with the Jacobian and
+/// its factorisation kept across iterations and steps (corrector.hpp); PRADIS's
+/// DABSU/DRLTU/DABSI/DRLTI and newton_options::method are not used. A rotational node
+/// whose quaternion norm drifted is scaled back to Lq = 1 with its history (rotations.hpp).
+/// docs/bdf.md ("Error control and tolerances", "Newton", "Options") has the rules in full.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -145,6 +127,10 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       bool clipped = false;
       const double wanted = hist_.step();
       const double h = choose_step(t_, target, wanted, recommended_, opt, clipped);
+      // An element holds the step below what the error allows (a switch in its transition, a
+      // contact, a friction reversal): its blocks change fast, so the kept Newton matrix is
+      // refreshed (docs/bdf.md, "Newton": a stale one let a switched node drift unseen).
+      if (!opt.ignore && recommended_ < wanted) newton_.valid = false;
       if (!(t_ + h > t_))
         raise(error(error_code::step_too_small,
                     "the step " + num(h) + " no longer advances the time " + num(t_) + " in double precision"));
