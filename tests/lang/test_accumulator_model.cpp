@@ -7,7 +7,8 @@
 //   (polytropic gas above the pre-charge; docs/domains.md, "HACC").
 // - The fully open check valve is a turbulent orifice: p2 - p3 = (rho / 2) (q / (Cd Amax))^2
 //   (Merritt, Hydraulic Control Systems, 1967, eq. 3-1), up to its regularisation near
-//   dp = 0 (relative dpt^2 / (4 dp^2) ~ 2e-5 at dp = 1.2 bar; docs/domains.md, "HORT").
+//   dp = 0 (the drop at a given flow is larger by the factor (1 + dpt^2 / dp^2)^(1/2), relatively
+//   about dpt^2 / (2 dp^2) ~ 3.5e-5 at dp = 1.2 bar; docs/domains.md, "HORT").
 
 #include <cmath>
 #include <memory>
