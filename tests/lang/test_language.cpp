@@ -147,13 +147,12 @@ TEST_SUITE("lang/language") {
     // Under the sanitizers (-O0, some 200x slower) the models that a test of their own runs in
     // full anyway are left out here; the dev preset runs every one.
     const std::set<std::string> own_test = {
-        "accumulator_charge.prd", "bouncing_ball.prd", "capstan.prd", "compound_pendulum.prd",
-        "coulomb_oscillator.prd", "crank_throw.prd", "crank_throw_rod.prd", "flex_cantilever.prd",
-        "gear_backlash.prd", "hydraulic_motor.prd", "large_deflection.prd", "pivot_pendulum.prd",
-        "plate_strip.prd", "pneumatic_fill.prd", "rectifier.prd", "rigid_pendulum.prd", "rlc_circuit.prd",
-        "rolling_ball.prd",
-        "simple_pendulum.prd", "slider_crank.prd", "spring_pendulum.prd", "stiff_pair.prd",
-        "tabular_spring.prd", "two_bodies.prd"};
+        "accumulator_charge.prd", "bouncing_ball.prd", "capstan.prd", "cardan_shaft.prd",
+        "compound_pendulum.prd", "coulomb_oscillator.prd", "crank_throw.prd", "crank_throw_rod.prd",
+        "flex_cantilever.prd", "gear_backlash.prd", "hydraulic_motor.prd", "large_deflection.prd",
+        "pivot_pendulum.prd", "plate_strip.prd", "pneumatic_cylinder.prd", "pneumatic_fill.prd",
+        "rectifier.prd", "rigid_pendulum.prd", "rlc_circuit.prd", "rolling_ball.prd", "simple_pendulum.prd",
+        "slider_crank.prd", "spring_pendulum.prd", "stiff_pair.prd", "tabular_spring.prd", "two_bodies.prd"};
     for (const std::string& name : own_test) CHECK(std::filesystem::exists(lang_test::models_dir() / name));
     int count = 0;
     for (const auto& e : std::filesystem::directory_iterator(lang_test::models_dir())) {
