@@ -42,6 +42,31 @@ struct zsr_no_root_t {
   }
 };
 using zsr_no_root = zsr_no_root_t<>;
+
+/// A linear damper c = 2 that refuses any displacement of its DOF (code 75), so the zero step's
+/// difference quotients along the motion meet a refusal.
+template <class = void>
+struct zsr_fragile_t {
+  static constexpr pradis::passport passport{.name = "FRAGILE", .ext = 1, .par = 0, .adr = 2, .ign = 3};
+  static constexpr element_help help{.title = "damper that refuses displacement",
+                                     .name = "f = 2 v, code 75 if u != 0",
+                                     .field = "mechanics",
+                                     .dofs = "1 - the DOF",
+                                     .parameters = "none",
+                                     .work = "none",
+                                     .special = "code 75 if u != 0"};
+  struct parameters {};
+  parameters p;
+  explicit zsr_fragile_t(parameters q = {}) : p(q) {}
+  static parameters example() { return {}; }
+  static zsr_fragile_t from_parameters(std::span<const double>) { return zsr_fragile_t{}; }
+  void evaluate(const local_input<zsr_fragile_t>& in, local_output<zsr_fragile_t>& out, element_context& ctx) const {
+    if (in.u(0) != 0) ctx.singular("displaced");
+    out.f(0) = 2 * in.v(0);
+    if (out.want_jacobian) out.C(0, 0) = 2;
+  }
+};
+using zsr_fragile = zsr_fragile_t<>;
 }  // namespace
 
 TEST_SUITE("integrators/zero step") {
@@ -95,5 +120,28 @@ TEST_SUITE("integrators/zero step") {
     CAPTURE(log.str());
     CHECK(log.str().find("warning: the zero step's Newton iterations on the initial derivatives stopped converging") !=
           std::string::npos);
+  }
+
+  TEST_CASE("an element that refuses the states next to the start: rates at 0 with a warning, the run goes on") {
+    // The damper balances the applied force -1 N: 2 v = -1, v = -0.5 from the first solve; the
+    // difference quotients along the motion displace the DOF.
+    model<zsr_fragile, constant_force> md;
+    const dof v = md.add_dof("v");
+    md.add<zsr_fragile>("fragile", {}, v);
+    md.add<constant_force>("push", {-1.0}, v);
+    simulation sim(md);
+    std::ostringstream log;
+    sim.log().to(log);
+    double v0 = 0, a0 = 1;
+    sim.on_output([&](const auto& r) {
+      if (r.time() == 0) v0 = r.v(v), a0 = r.a(v);
+    });
+    // The first step displaces the DOF too: the element's own error ends the run.
+    CHECK_THROWS_AS(sim.run({.end = 1e-3, .smax = 1e-4}), error);
+    CHECK(v0 == doctest::Approx(-0.5).epsilon(1e-14));
+    CHECK(a0 == 0.0);
+    CHECK(log.str().find("warning: no consistent rates of the viscous DOFs at the zero step: an element refuses") !=
+          std::string::npos);
+    CHECK(log.str().find("displaced") != std::string::npos);
   }
 }

@@ -212,8 +212,8 @@ void refine_start(Model& m, Assembler& as, Solver& solver, global_state& s, std:
 /// C_vv da_v = -dF_v/dt is solved for the viscous rates. Without this they started at 0 and
 /// the error test of the first steps saw the jump (a node between a pump and a check valve
 /// whose pressure rises with the accumulator behind the valve failed at SMIN). Explicit time
-/// dependence (a ramped flow source) is not seen. A singular C_vv leaves the rates at 0 with
-/// a warning.
+/// dependence (a ramped flow source) is not seen. A singular C_vv, or an element that refuses
+/// one of the nearby states, leaves the rates at 0 with a warning.
 template <class Model, class Assembler, class Solver, class Evaluate>
 void viscous_rates(Model& m, Assembler& as, Solver& solver, global_state& s, run_statistics& stats,
                    diagnostics& log, Evaluate& evaluate, const std::vector<char>& kind,
@@ -246,12 +246,21 @@ void viscous_rates(Model& m, Assembler& as, Solver& solver, global_state& s, run
     evaluate(jacobian_coefficients{0, 0, 0}, false);
     for (int i = 0; i < ne; ++i) out[static_cast<std::size_t>(i)] = as.residual()(as.dof_of(i));
   };
-  for (int k = 0; k < 2; ++k) {
-    const double h = k == 0 ? e : e / 2;
-    rows_at(h, fp);
-    rows_at(-h, fm);
-    d[k].resize(static_cast<std::size_t>(ne));
-    for (std::size_t i = 0; i < d[k].size(); ++i) d[k][i] = (fp[i] - fm[i]) / (2 * h);
+  try {
+    for (int k = 0; k < 2; ++k) {
+      const double h = k == 0 ? e : e / 2;
+      rows_at(h, fp);
+      rows_at(-h, fm);
+      d[k].resize(static_cast<std::size_t>(ne));
+      for (std::size_t i = 0; i < d[k].size(); ++i) d[k][i] = (fp[i] - fm[i]) / (2 * h);
+    }
+  } catch (const error& ex) {  // an element refuses a state next to the start: keep the rates at 0
+    s.u = u0;
+    s.v = v0;
+    evaluate(jacobian_coefficients{0, 0, 0}, false);
+    log.write("warning: no consistent rates of the viscous DOFs at the zero step: an element refuses a state "
+              "next to the start (" + std::string(ex.what()) + "); they start at 0");
+    return;
   }
   s.u = u0;
   s.v = v0;
