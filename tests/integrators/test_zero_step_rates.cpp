@@ -144,4 +144,49 @@ TEST_SUITE("integrators/zero step") {
           std::string::npos);
     CHECK(log.str().find("displaced") != std::string::npos);
   }
+
+  TEST_CASE("explicit time dependence: a current source feeding a resistor starts with v' = R I'(0)") {
+    // The node equation v / R - I(t) = 0 holds at all times, so v = R I(t) and v' = R I'(t):
+    // the node voltage's rate comes from the source's time dependence alone (no state term).
+    // ISIN: I = I0 + A sin(2 pi f t + phi), I'(0) = 2 pi f A cos(phi). ITAB: the ramp (0, 0),
+    // (1, 2) from t = 0, I'(0+) = 2 A/s (before t = 0 the table holds its first value, so a
+    // central difference would give half of it). The one-sided differences with two
+    // Richardson levels are exact on the ramp and within O((2 pi f e)^3) on the sine, where
+    // e <= 1e-2 / (20 f) (ISIN's recommended step): 3e-8 relative.
+    const double R = 10, A = 0.2, f = 50, phi = 30.0, I0 = 0.1;
+    const double pi = 3.14159265358979323846;
+    for (const bool bdf : {false, true})
+      for (const bool table : {false, true}) {
+        CAPTURE(bdf);
+        CAPTURE(table);
+        model<resistor, current_sine, current_table> md;
+        const dof n = md.add_dof("n");
+        md.add<resistor>("R", {R}, n, md.ground());
+        if (table)
+          md.add<current_table>("I", {{0.0, 0.0, 1.0, 2.0}}, n, md.ground());
+        else
+          md.add<current_sine>("I", {A, f, phi, I0}, n, md.ground());
+        double v0 = -1, a0 = 0;
+        auto at_start = [&](const auto& r) {
+          if (r.time() == 0) v0 = r.v(n), a0 = r.a(n);
+        };
+        const run_options o{.end = 1e-4, .out = 1e-4, .smax = 1e-5};
+        if (bdf) {
+          bdf_simulation sim(md);
+          sim.on_output(at_start);
+          sim.run(o);
+        } else {
+          simulation sim(md);
+          sim.on_output(at_start);
+          sim.run(o);
+        }
+        if (table) {
+          CHECK(v0 == 0.0);
+          CHECK(a0 == doctest::Approx(2 * R).epsilon(1e-12));
+        } else {
+          CHECK(v0 == doctest::Approx(R * (I0 + A * std::sin(phi * pi / 180))).epsilon(1e-14));
+          CHECK(a0 == doctest::Approx(R * 2 * pi * f * A * std::cos(phi * pi / 180)).epsilon(3e-8));
+        }
+      }
+  }
 }

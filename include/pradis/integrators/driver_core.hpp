@@ -85,6 +85,20 @@ class driver_core {
     if (jac) ++stats_.jacobian_evaluations;
     asm_.evaluate(m_, s_, c, info);
   }
+  /// The zero step's evaluation at the time t_ + dt with the kinematic sources at that time
+  /// (they overwrite u, v, a, p of their DOFs; the caller restores them); t_ is kept.
+  void evaluate_at(double dt, const jacobian_coefficients& c, bool jac) {
+    if (dt == 0.0) return evaluate(c, 0.0, jac);
+    const double t0 = t_;
+    struct restore_time {
+      double& t;
+      double t0;
+      ~restore_time() { t = t0; }
+    } keep{t_, t0};
+    t_ = t0 + dt;
+    apply_sources(m_, s_, t_);
+    evaluate(c, 0.0, jac);
+  }
   /// Accepts the step: NEW state to OLD, element commit hooks, source reactions.
   void commit() {
     m_.old_state_pool() = m_.new_state_pool();
@@ -142,7 +156,7 @@ class driver_core {
     slaved_dof_start(m_, asm_, s_, opt_.newton.dabsi, log_, set_u, set_v);
     const std::vector<char> kind = initial_derivatives(
         m_, asm_, solver, s_, rhs_, stats_, log_, opt_.newton.dabsi,
-        [&](const jacobian_coefficients& c, bool jac) { evaluate(c, 0.0, jac); });
+        [&](const jacobian_coefficients& c, bool jac, double dt = 0.0) { evaluate_at(dt, c, jac); });
     warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);
     std::vector<double> classes(static_cast<std::size_t>(m_.dof_count()), 0.0);
     const std::vector<char> hidden = m_.hidden_dofs(true);  // a node's hidden or slaved DOF: not counted as massless

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "pradis/assembly/assembler.hpp"
@@ -206,14 +207,19 @@ void refine_start(Model& m, Assembler& as, Solver& solver, global_state& s, std:
 /// at a node without capacitance, the series point of a spring and a damper) follows from its
 /// equation F_i = 0, so its rate a_i follows from dF_i/dt = 0 along the motion. For the
 /// viscous equations (kind 2, not a node's hidden or slaved DOF) whose rows hold no inertia
-/// entry, dF_i/dt = K v + C a is taken by central differences along u0 + t v + t^2 a / 2,
-/// v + t a (steps e and e / 2, Richardson extrapolation; e = 1e-3 s, less where a DOF's
-/// velocity would change by more than 1e-3 of its nominal potential plus its magnitude), and
+/// entry, dF_i/dt is taken by forward differences along u0 + t v + t^2 a / 2, v + t a at the
+/// times t0 + t (t = e, e / 2, e / 4 and two Richardson extrapolations, error O(e^3);
+/// e = 1e-3 s, less where a DOF's velocity would change by more than 1e-3 of its nominal
+/// potential plus its magnitude, and at most 1e-2 of the step an element recommends), and
 /// C_vv da_v = -dF_v/dt is solved for the viscous rates. Without this they started at 0 and
 /// the error test of the first steps saw the jump (a node between a pump and a check valve
-/// whose pressure rises with the accumulator behind the valve failed at SMIN). Explicit time
-/// dependence (a ramped flow source) is not seen. A singular C_vv, or an element that refuses
-/// one of the nearby states, leaves the rates at 0 with a warning.
+/// whose pressure rises with the accumulator behind the valve failed at SMIN). The nearby
+/// states are evaluated at their times with the kinematic sources at those times, so dF/dt
+/// includes a flow's explicit time dependence (a current source ISIN feeding a resistor:
+/// v' = R I'(0)) when `evaluate(c, want_jacobian, t)` takes that offset. The differences are
+/// one-sided because the run goes forward: a ramp that starts at t0 (a table source) has its
+/// rate after t0. A singular C_vv, or an element that refuses one of the nearby states, leaves
+/// the rates at 0 with a warning.
 template <class Model, class Assembler, class Solver, class Evaluate>
 void viscous_rates(Model& m, Assembler& as, Solver& solver, global_state& s, run_statistics& stats,
                    diagnostics& log, Evaluate& evaluate, const std::vector<char>& kind,
@@ -232,42 +238,54 @@ void viscous_rates(Model& m, Assembler& as, Solver& solver, global_state& s, run
     any = any || !inertia;
   }
   if (!any) return;
-  const Eigen::VectorXd u0 = s.u, v0 = s.v;
+  const Eigen::VectorXd u0 = s.u, v0 = s.v, a0 = s.a, p0 = s.p;  // sources overwrite a, p of their DOFs
   double e = 1e-3;
   for (Eigen::Index d = 0; d < s.a.size(); ++d) {
-    const double a = std::abs(s.a(d));
+    const double a = std::abs(a0(d));
     const double lim = 1e-3 * (m.scales()[static_cast<std::size_t>(d)].potential + std::abs(v0(d)));
     if (a * e > lim) e = lim / a;
   }
-  std::vector<double> fp(static_cast<std::size_t>(ne)), fm(static_cast<std::size_t>(ne)), d[2];
+  if (std::isfinite(as.recommended_step()) && as.recommended_step() > 0) e = std::min(e, 1e-2 * as.recommended_step());
+  std::vector<double> f0(static_cast<std::size_t>(ne)), fh(static_cast<std::size_t>(ne)), d[3];
   auto rows_at = [&](double t, std::vector<double>& out) {
-    s.u = u0 + t * v0 + (0.5 * t * t) * s.a;
-    s.v = v0 + t * s.a;
-    evaluate(jacobian_coefficients{0, 0, 0}, false);
+    s.u = u0 + t * v0 + (0.5 * t * t) * a0;
+    s.v = v0 + t * a0;
+    if constexpr (std::is_invocable_v<Evaluate&, jacobian_coefficients, bool, double>)
+      evaluate(jacobian_coefficients{0, 0, 0}, false, t);
+    else
+      evaluate(jacobian_coefficients{0, 0, 0}, false);
     for (int i = 0; i < ne; ++i) out[static_cast<std::size_t>(i)] = as.residual()(as.dof_of(i));
   };
-  try {
-    for (int k = 0; k < 2; ++k) {
-      const double h = k == 0 ? e : e / 2;
-      rows_at(h, fp);
-      rows_at(-h, fm);
-      d[k].resize(static_cast<std::size_t>(ne));
-      for (std::size_t i = 0; i < d[k].size(); ++i) d[k][i] = (fp[i] - fm[i]) / (2 * h);
-    }
-  } catch (const error& ex) {  // an element refuses a state next to the start: keep the rates at 0
+  auto restore = [&] {
     s.u = u0;
     s.v = v0;
+    s.a = a0;
+    s.p = p0;
+  };
+  try {
+    rows_at(0.0, f0);
+    for (int k = 0; k < 3; ++k) {
+      const double h = std::ldexp(e, -k);
+      rows_at(h, fh);
+      d[k].resize(static_cast<std::size_t>(ne));
+      for (std::size_t i = 0; i < d[k].size(); ++i) d[k][i] = (fh[i] - f0[i]) / h;
+    }
+  } catch (const error& ex) {  // an element refuses a state next to the start: keep the rates at 0
+    restore();
     evaluate(jacobian_coefficients{0, 0, 0}, false);
     log.write("warning: no consistent rates of the viscous DOFs at the zero step: an element refuses a state "
               "next to the start (" + std::string(ex.what()) + "); they start at 0");
     return;
   }
-  s.u = u0;
-  s.v = v0;
+  restore();
   std::vector<double> j(cvals.size(), 0.0), rhs(static_cast<std::size_t>(ne), 0.0);
   for (int r = 0; r < ne; ++r) {
     const bool row = rate[static_cast<std::size_t>(r)] != 0;
-    if (row) rhs[static_cast<std::size_t>(r)] = -(4 * d[1][static_cast<std::size_t>(r)] - d[0][static_cast<std::size_t>(r)]) / 3;
+    if (row) {  // D(h) = F' + F'' h / 2 + F''' h^2 / 6 + ...: eliminate h, then h^2
+      const auto i = static_cast<std::size_t>(r);
+      const double r1 = 2 * d[1][i] - d[0][i], r2 = 2 * d[2][i] - d[1][i];
+      rhs[i] = -(4 * r2 - r1) / 3;
+    }
     for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
       const int c = pat.col[static_cast<std::size_t>(q)];
       if (row) j[static_cast<std::size_t>(q)] = rate[static_cast<std::size_t>(c)] ? cvals[static_cast<std::size_t>(q)] : 0.0;
