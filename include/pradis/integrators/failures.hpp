@@ -8,12 +8,52 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include "pradis/assembly/assembler.hpp"
 #include "pradis/core/error.hpp"
+#include "pradis/integrators/dependent_equations.hpp"
 #include "pradis/integrators/options.hpp"
 
 namespace pradis::detail {
+
+/// The message for equations that depend on each other (dependent_equations.hpp). When
+/// every one is a multiplier's row (an element's internal DOF without a diagonal entry),
+/// the constraints are redundant and their elements are named; else `plain` gets the DOFs
+/// of the dependent equations appended (at most 8).
+template <class Model, class Assembler>
+std::string dependence_text(const Model& m, const Assembler& as, const dependent_equations& dep,
+                            const std::string& plain) {
+  std::vector<int> dofs;
+  bool multipliers = true;
+  for (std::size_t k = 0; k < dep.rows.size(); ++k) {
+    dofs.push_back(as.dof_of(dep.rows[k]));
+    multipliers = multipliers && dep.no_diagonal[k];
+  }
+  std::string owners;
+  m.for_each_instances([&](const auto& vec) {
+    for (const auto& in : vec) {
+      using T = std::remove_cvref_t<decltype(in.element)>;
+      bool owns = false, other = false;
+      for (std::size_t k = 0; k < in.dofs.size(); ++k) {
+        if (std::find(dofs.begin(), dofs.end(), in.dofs[k]) == dofs.end()) continue;
+        (k >= static_cast<std::size_t>(T::passport.ext) ? owns : other) = true;
+      }
+      if (owns) owners += (owners.empty() ? "" : ", ") + std::string(T::passport.name) + " '" + in.name + "'";
+      multipliers = multipliers && !other;
+    }
+  });
+  if (multipliers && !owners.empty())
+    return "redundant constraints: the equations of " + owners + " depend on each other (" +
+           std::to_string(dep.deficiency) + " more than the motion they hold needs), so the Newton matrix is "
+           "singular and the constraint forces are not determined; remove a joint, or use one that holds fewer "
+           "directions (a second bearing on a rigid shaft: PTL3X or CYL3X instead of REV3X)";
+  std::string list;
+  for (std::size_t k = 0; k < dofs.size() && k < 8; ++k) list += (k ? ", '" : "'") + m.dof_name(dofs[k]) + "'";
+  if (dofs.size() > 8) list += ", ...";
+  return plain + "; the equations of DOFs " + list + " depend on each other";
+}
 
 /// The error of a singular (or structurally singular) Newton matrix, naming
 /// the DOF of the equation e.dof() and the elements on it; e itself when the
@@ -36,6 +76,9 @@ error singular_error(const Model& m, const Assembler& as, const error& e, double
                         : "the Newton matrix is singular at DOF '" + m.dof_name(d) + "' (elements on it: " +
                               (on.empty() ? std::string("none") : on) +
                               "); a DOF needs stiffness, viscosity or mass, or a support";
+  if (e.code() == error_code::singular_matrix)
+    if (const auto dep = find_dependent_equations(as); dep && dep->rows.size() >= 2)
+      msg = dependence_text(m, as, *dep, msg);
   return error(e.code(), msg + " [t = " + num(t) + "]", {}, {}, d);
 }
 
