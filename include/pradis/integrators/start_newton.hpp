@@ -303,9 +303,14 @@ void viscous_rates(Model& m, Assembler& as, Solver& solver, global_state& s, run
     evaluate(jacobian_coefficients{0, 0, 0}, false);
     return;
   }
-  for (int i = 0; i < ne; ++i)
-    if (rate[static_cast<std::size_t>(i)] && std::isfinite(rhs[static_cast<std::size_t>(i)]))
-      s.a(as.dof_of(i)) += rhs[static_cast<std::size_t>(i)];
+  bool finite = true;
+  for (int i = 0; i < ne; ++i) finite = finite && (!rate[static_cast<std::size_t>(i)] || std::isfinite(rhs[static_cast<std::size_t>(i)]));
+  if (!finite)  // a user's solver that returns what a singular C_vv gives instead of throwing
+    log.write("warning: no consistent rates of the viscous DOFs at the zero step (their solve is not finite): they "
+              "start at 0");
+  else
+    for (int i = 0; i < ne; ++i)
+      if (rate[static_cast<std::size_t>(i)]) s.a(as.dof_of(i)) += rhs[static_cast<std::size_t>(i)];
   evaluate(jacobian_coefficients{0, 0, 0}, false);
 }
 
