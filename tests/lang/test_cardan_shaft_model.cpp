@@ -297,4 +297,32 @@ TEST_SUITE("lang/cardan shaft") {
     CHECK(e_fine <= e / 3);
     CHECK(e <= 0.1 * share);
   }
+
+  TEST_CASE("examples/models/cardan_shaft.prd with a second REV3X on the output shaft: code 131 naming the "
+            "redundant joints") {
+    // The model's comment: a REV3X at the output shaft's far end (point and axis held) instead of the
+    // floating PTL3X holds the joint point a third time. Gruebler's count (Shabana, Dynamics of
+    // Multibody Systems, section 3.4): the output shaft's 6 motions are held by UNI3X (3 for the
+    // point, 1 for the cross) and REV3X (3 + 2) with 9 rows where 6 suffice: 3 surplus.
+    std::string text = cdn_file();
+    const std::string old_joint = "Floating bearing 'PTL3X (0 0 0 0 0 0 11 12 13 14 15 16; Floating bearing)";
+    const auto p = text.find(old_joint);
+    REQUIRE(p != std::string::npos);
+    text.replace(p, old_joint.size(), "Far bearing 'REV3X (0 0 0 0 0 0 11 12 13 14 15 16; Far bearing)");
+    const auto d = text.find("$FRAGMENT");
+    REQUIRE(d != std::string::npos);
+    text.insert(d, "    Far bearing = 0, 0, 0, 0.5196152422706632, 0.3, 0, 0.2598076211353316, 0.15, 0, "
+                   "0.2598076211353316, 0.15, 0, 0.8660254037844386, 0.5, 0, 0.8660254037844386, 0.5, 0\n");
+    const auto o = text.find("    Off axis 'X (W:Floating bearing(1); 1)\n");
+    REQUIRE(o != std::string::npos);
+    text.erase(o, std::string("    Off axis 'X (W:Floating bearing(1); 1)\n").size());
+    const std::string e = lang_test::error_of(text);
+    CAPTURE(e);
+    CHECK(e.find("pradis error 131") != std::string::npos);
+    CHECK(e.find("redundant constraints: the equations of ") != std::string::npos);
+    CHECK(e.find("UNI3X 'Cardan'") != std::string::npos);
+    CHECK(e.find("REV3X 'Far bearing'") != std::string::npos);
+    CHECK(e.find("(3 more than the motion they hold needs)") != std::string::npos);
+  }
 }
+

@@ -155,11 +155,15 @@ void refine_start(Model& m, Assembler& as, Solver& solver, global_state& s, std:
       add_start_correction(as, kind, z, -step, s);
       r = residual_at();
     }
-    if (it == 30) {
+    mvals.assign(as.values().begin(), as.values().end());
+    if (it == 30) {  // the rates (viscous_rates) take C and M of this iterate
+      if constexpr (Assembler::any_c) {
+        evaluate(jacobian_coefficients{0, 1, 0}, true);
+        cvals.assign(as.values().begin(), as.values().end());
+      }
       warn("did not converge in 30 iterations");
       return;
     }
-    mvals.assign(as.values().begin(), as.values().end());
     for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
     if (constraints) constraint_accelerations(as, s, kind, rhs, evaluate);
     if constexpr (Assembler::any_c) {
