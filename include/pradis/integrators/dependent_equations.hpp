@@ -32,7 +32,7 @@ struct dependent_equations {
 /// entry of a null-space basis vector. None when the matrix has more than `max_equations`
 /// equations, entries that are not finite, or full rank at that threshold.
 template <class Assembler>
-std::optional<dependent_equations> find_dependent_equations(const Assembler& as, int max_equations = 1500,
+std::optional<dependent_equations> find_dependent_equations(const Assembler& as, int max_equations = 1000,
                                                             double threshold = 1e-10) {
   const int n = as.equations();
   if (n <= 0 || n > max_equations) return std::nullopt;
