@@ -67,6 +67,20 @@ struct zsr_fragile_t {
   }
 };
 using zsr_fragile = zsr_fragile_t<>;
+
+/// Runs `md` with the BDF or the one-step driver, `observe` on every output.
+template <class M, class F>
+void zsr_run(M& md, bool bdf, const run_options& o, F&& observe) {
+  if (bdf) {
+    bdf_simulation sim(md);
+    sim.on_output(observe);
+    sim.run(o);
+  } else {
+    simulation sim(md);
+    sim.on_output(observe);
+    sim.run(o);
+  }
+}
 }  // namespace
 
 TEST_SUITE("integrators/zero step") {
@@ -85,15 +99,7 @@ TEST_SUITE("integrators/zero step") {
         if (r.time() == 0) vs = r.v(s), as = r.a(s), ax = r.a(x);
       };
       const run_options o{.end = 1e-3, .out = 1e-3, .smax = 1e-4};
-      if (bdf) {
-        bdf_simulation sim(md);
-        sim.on_output(at_start);
-        sim.run(o);
-      } else {
-        simulation sim(md);
-        sim.on_output(at_start);
-        sim.run(o);
-      }
+      zsr_run(md, bdf, o, at_start);
       CHECK(vs == doctest::Approx(k * x0 / c).epsilon(1e-14));
       CHECK(ax == doctest::Approx(-k * x0 / m).epsilon(1e-14));
       CHECK(as == doctest::Approx(-k * k * x0 / (c * c)).epsilon(1e-9));
@@ -171,15 +177,7 @@ TEST_SUITE("integrators/zero step") {
           if (r.time() == 0) v0 = r.v(n), a0 = r.a(n);
         };
         const run_options o{.end = 1e-4, .out = 1e-4, .smax = 1e-5};
-        if (bdf) {
-          bdf_simulation sim(md);
-          sim.on_output(at_start);
-          sim.run(o);
-        } else {
-          simulation sim(md);
-          sim.on_output(at_start);
-          sim.run(o);
-        }
+        zsr_run(md, bdf, o, at_start);
         if (table) {
           CHECK(v0 == 0.0);
           CHECK(a0 == doctest::Approx(2 * R).epsilon(1e-12));
