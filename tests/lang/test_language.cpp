@@ -150,6 +150,7 @@ TEST_SUITE("lang/language") {
         "accumulator_charge.prd", "bouncing_ball.prd", "cam_follower.prd", "capstan.prd", "cardan_shaft.prd",
         "eccentric_shaker.prd",
         "compound_pendulum.prd", "coulomb_oscillator.prd", "crank_throw.prd", "crank_throw_rod.prd",
+        "drill_spindle.prd", "slider_table.prd",
         "flex_cantilever.prd", "gear_backlash.prd", "hydraulic_motor.prd", "large_deflection.prd",
         "pivot_pendulum.prd", "plate_strip.prd", "pneumatic_cylinder.prd", "pneumatic_fill.prd",
         "rectifier.prd", "rigid_pendulum.prd", "rlc_circuit.prd", "rolling_ball.prd", "simple_pendulum.prd",
