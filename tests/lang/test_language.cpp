@@ -153,7 +153,7 @@ TEST_SUITE("lang/language") {
         "drill_spindle.prd", "slider_table.prd",
         "flex_cantilever.prd", "gear_backlash.prd", "hydraulic_motor.prd", "large_deflection.prd",
         "pivot_pendulum.prd", "plate_strip.prd", "pneumatic_cylinder.prd", "pneumatic_fill.prd",
-        "rectifier.prd", "rigid_pendulum.prd", "rlc_circuit.prd", "rolling_ball.prd", "simple_pendulum.prd",
+        "rectifier.prd", "rigid_pendulum.prd", "source_bench.prd", "rlc_circuit.prd", "rolling_ball.prd", "simple_pendulum.prd",
         "slider_crank.prd", "spring_pendulum.prd", "stiff_pair.prd", "tabular_spring.prd", "two_bodies.prd"};
     for (const std::string& name : own_test) CHECK(std::filesystem::exists(lang_test::models_dir() / name));
     int count = 0;
