@@ -163,7 +163,8 @@ class driver_core {
     for (int i = 0; i < static_cast<int>(kind.size()); ++i) {
       const auto d = static_cast<std::size_t>(asm_.dof_of(i));
       if (kind[static_cast<std::size_t>(i)] == 3) classes[d] = dof_class_index3;
-      if (kind[static_cast<std::size_t>(i)] == 0 && !hidden[d]) classes[d] = dof_class_massless;
+      if ((kind[static_cast<std::size_t>(i)] == 0 || kind[static_cast<std::size_t>(i)] >= 4) && !hidden[d])
+        classes[d] = dof_class_massless;  // kinds 4, 5: a velocity-level multiplier (a source current)
     }
     set_dof_classes(classes);
   }

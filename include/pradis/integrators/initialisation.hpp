@@ -23,6 +23,7 @@
 #include "pradis/integrators/node_start.hpp"
 #include "pradis/integrators/options.hpp"
 #include "pradis/integrators/start_newton.hpp"
+#include "pradis/integrators/velocity_constraints.hpp"
 
 namespace pradis::detail {
 
@@ -166,10 +167,11 @@ bool mark_index3_multipliers(const Pattern& pat, const std::vector<double>& mval
 /// multiplier's unknown is its value and their row the constraint's second
 /// derivative (constraint_accelerations), so the initial joint forces are the
 /// consistent ones; if that matrix is singular (redundant constraints), a warning
-/// is logged and they start as algebraic DOFs.
+/// is logged and they start as algebraic DOFs. So do velocity-level constraints
+/// (the currents of floating voltage sources; velocity_constraints.hpp).
 /// `evaluate(c, want_jacobian)` evaluates the model at s into `as`. Returns
 /// the kind of each equation (1 inertial, 2 viscous, 3 index-3 multiplier,
-/// 0 algebraic), or an empty
+/// 4 and 5 velocity-level multipliers (velocity_constraints.hpp), 0 algebraic), or an empty
 /// vector when no consistent derivatives could be found (a warning is logged
 /// and the free DOFs start with zero accelerations).
 template <class Model, class Assembler, class Solver, class Evaluate>
@@ -202,13 +204,41 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
     // unknown is its value v, and its row becomes the constraint's second time
     // derivative, G a + (dG/dt) v = 0, so that the initial multipliers and
     // accelerations are consistent with the constraints.
+    // Velocity-level constraints (velocity_constraints.hpp): kind 4 is solved with the
+    // viscous DOFs; for kind 5 the potentials move onto the constraint first and the row
+    // becomes its first time derivative.
     std::vector<double> kvals;
-    const std::vector<double> rhs_plain = rhs;
+    std::vector<double> rhs_plain = rhs;
     if (std::find(kind.begin(), kind.end(), char{0}) != kind.end()) {
       evaluate(jacobian_coefficients{1, 0, 0}, true);
       kvals.assign(as.values().begin(), as.values().end());
-      if (mark_index3_multipliers(pat, mvals, cvals, kvals, kind))
-        constraint_accelerations(as, s, kind, rhs, evaluate);
+      const bool index3 = mark_index3_multipliers(pat, mvals, cvals, kvals, kind);
+      if (mark_velocity_multipliers(pat, mvals, cvals, kvals, kind)) {
+        if (project_velocity_constraints(m, as, kind, mvals, cvals, s, log)) {
+          evaluate(jacobian_coefficients{0, 0, 1}, true);  // the flows, M, C and K at the moved potentials
+          mvals.assign(as.values().begin(), as.values().end());
+          for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
+          rhs_plain = rhs;
+          if constexpr (Assembler::any_c) {
+            evaluate(jacobian_coefficients{0, 1, 0}, true);
+            cvals.assign(as.values().begin(), as.values().end());
+          }
+          evaluate(jacobian_coefficients{1, 0, 0}, true);
+          kvals.assign(as.values().begin(), as.values().end());
+          try {
+            velocity_constraint_rates(m, as, s, kind, rhs, evaluate);
+          } catch (const error& e) {
+            log.write("warning: the constraints of sources across inertial DOFs are met from the first step only: "
+                      "an element refuses a state next to the start (" + std::string(e.what()) + ")");
+            std::replace(kind.begin(), kind.end(), char{5}, char{0});
+          }
+        } else {
+          log.write("warning: the constraints of sources across inertial DOFs depend on each other: their currents "
+                    "start at their initial values");
+          std::replace(kind.begin(), kind.end(), char{5}, char{0});
+        }
+      }
+      if (index3) constraint_accelerations(as, s, kind, rhs, evaluate);
     }
     std::vector<double> rhs0 = rhs;
     std::vector<double> j(mvals.size(), 0.0);
@@ -228,12 +258,14 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
         break;
       } catch (const error& e) {
         if (e.code() != error_code::singular_matrix) throw;
-        if (std::find(kind.begin(), kind.end(), char{3}) != kind.end()) {
-          // Redundant or unsupported constraints: start them as algebraic DOFs
-          // (multipliers at their initial values, met by Newton at the first step).
-          log.write("warning: no consistent initial multipliers: the constraint forces start at their initial "
-                    "values (" + std::string(e.what()) + ")");
+        if (std::find_if(kind.begin(), kind.end(), [](char k) { return k >= 3; }) != kind.end()) {
+          // Redundant or unsupported constraints (a loop of voltage sources): start them as
+          // algebraic DOFs (multipliers at their initial values, met by Newton at the first step).
+          log.write("warning: no consistent initial multipliers: the constraint forces and source currents start "
+                    "at their initial values (" + std::string(e.what()) + ")");
           std::replace(kind.begin(), kind.end(), char{3}, char{0});
+          std::replace(kind.begin(), kind.end(), char{4}, char{0});
+          std::replace(kind.begin(), kind.end(), char{5}, char{0});
           rhs0 = rhs_plain;
           continue;
         }

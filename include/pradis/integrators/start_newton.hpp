@@ -56,7 +56,8 @@ void constraint_accelerations(Assembler& as, global_state& s, const std::vector<
 }
 
 /// The zero step's scaled residual: the largest |F_i| / (nominal flow of DOF i, core/domain.hpp)
-/// over the equations whose unknown it solves for (inertial or viscous, `kind` 1 or 2), without
+/// over the equations whose unknown it solves for (inertial, viscous or a velocity-level multiplier,
+/// `kind` 1, 2 or 4), without
 /// the nodes' hidden and slaved DOFs (their rows are replaced). NaN if a residual is NaN.
 template <class Model, class Assembler>
 double start_residual(const Model& m, const Assembler& as, const std::vector<char>& kind) {
@@ -65,7 +66,7 @@ double start_residual(const Model& m, const Assembler& as, const std::vector<cha
   for (int i = 0; i < as.equations(); ++i) {
     const auto d = static_cast<std::size_t>(as.dof_of(i));
     const char k = kind[static_cast<std::size_t>(i)];
-    if ((k != 1 && k != 2) || hidden[d]) continue;
+    if ((k != 1 && k != 2 && k != 4) || hidden[d]) continue;
     const double x = std::abs(as.residual()(static_cast<Eigen::Index>(d))) / m.scales()[d].flow;
     if (!(x <= r)) r = x;
   }
@@ -73,8 +74,9 @@ double start_residual(const Model& m, const Assembler& as, const std::vector<cha
 }
 
 /// The zero step's matrix (initial_derivatives) in the pattern's order: M in the columns of
-/// inertial unknowns, C in those of viscous ones and multipliers, the identity on algebraic
-/// DOFs; an index-3 constraint row has K in the inertial columns (its second derivative).
+/// inertial unknowns, C in those of viscous ones and multipliers (kinds 2, 3, 4), the identity on algebraic
+/// DOFs; an index-3 constraint row has K in the inertial columns (its second derivative), a
+/// kind-5 row (velocity_constraints.hpp) C there (its first derivative).
 inline void start_matrix(const linalg::sparsity_pattern& pat, const std::vector<char>& kind, const std::vector<double>& mvals,
                          const std::vector<double>& cvals, const std::vector<double>& kvals, std::vector<double>& j) {
   const int ne = static_cast<int>(kind.size());
@@ -84,12 +86,13 @@ inline void start_matrix(const linalg::sparsity_pattern& pat, const std::vector<
       const auto sq = static_cast<std::size_t>(q);
       const char k = kind[static_cast<std::size_t>(c)];
       if (kind[static_cast<std::size_t>(r)] == 3) j[sq] = k == 1 ? kvals[sq] : 0.0;
-      else j[sq] = k == 1 ? mvals[sq] : (k == 2 || k == 3 ? cvals[sq] : (r == c ? 1.0 : 0.0));
+      else if (kind[static_cast<std::size_t>(r)] == 5) j[sq] = k >= 1 ? cvals[sq] : 0.0;
+      else j[sq] = k == 1 ? mvals[sq] : (k >= 2 ? cvals[sq] : (r == c ? 1.0 : 0.0));
     }
 }
 
 /// Adds f z to the zero step's unknowns: accelerations of inertial equations, velocities of
-/// viscous ones and multipliers (`kind` 1, 2, 3; z in equation order).
+/// viscous ones and multipliers (`kind` 1, 2, 3, 4; z in equation order).
 template <class Assembler>
 void add_start_correction(const Assembler& as, const std::vector<char>& kind, const std::vector<double>& z, double f,
                           global_state& s) {
@@ -97,7 +100,7 @@ void add_start_correction(const Assembler& as, const std::vector<char>& kind, co
     const auto d = as.dof_of(i);
     const char k = kind[static_cast<std::size_t>(i)];
     if (k == 1) s.a(d) += f * z[static_cast<std::size_t>(i)];
-    if (k == 2 || k == 3) s.v(d) += f * z[static_cast<std::size_t>(i)];
+    if (k >= 2) s.v(d) += f * z[static_cast<std::size_t>(i)];
   }
 }
 
@@ -127,6 +130,7 @@ void refine_start(Model& m, Assembler& as, Solver& solver, global_state& s, std:
     viscous = viscous || (kind[static_cast<std::size_t>(i)] == 2 && !hidden[static_cast<std::size_t>(as.dof_of(i))]);
   if (!viscous) return;
   const bool constraints = std::find(kind.begin(), kind.end(), char{3}) != kind.end();
+  const bool velocity_constraints = std::find(kind.begin(), kind.end(), char{5}) != kind.end();
   const auto& pat = as.pattern();
   std::vector<double> j(mvals.size(), 0.0), rhs(static_cast<std::size_t>(ne), 0.0);
   auto residual_at = [&]() {
@@ -166,6 +170,7 @@ void refine_start(Model& m, Assembler& as, Solver& solver, global_state& s, std:
     }
     for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
     if (constraints) constraint_accelerations(as, s, kind, rhs, evaluate);
+    if (velocity_constraints) velocity_constraint_rates(m, as, s, kind, rhs, evaluate);
     if constexpr (Assembler::any_c) {
       evaluate(jacobian_coefficients{0, 1, 0}, true);
       cvals.assign(as.values().begin(), as.values().end());
@@ -207,22 +212,86 @@ void refine_start(Model& m, Assembler& as, Solver& solver, global_state& s, std:
   }
 }
 
+/// The time derivative dF_i/dt of every equation's residual along the motion
+/// u0 + t v + t^2 a / 2, v + t a at the times t0 + t, into `out` (equation order), by
+/// forward differences at t = e, e / 2, e / 4 and two Richardson extrapolations (error
+/// O(e^3)); e = 1e-3 s, less where a DOF's velocity would change by more than 1e-3 of its
+/// nominal potential plus its magnitude, and at most 1e-2 of the step an element
+/// recommends. The nearby states are evaluated at their times with the kinematic sources
+/// at those times when `evaluate(c, want_jacobian, t)` takes that offset, so dF/dt includes
+/// a flow's explicit time dependence. One-sided because the run goes forward: a ramp that
+/// starts at t0 (a table source) has its rate after t0. Restores s and evaluates it again,
+/// also when an element refuses a nearby state (its error is rethrown).
+template <class Model, class Assembler, class Evaluate>
+void rates_along_motion(const Model& m, Assembler& as, global_state& s, Evaluate& evaluate, std::vector<double>& out) {
+  const int ne = as.equations();
+  const Eigen::VectorXd u0 = s.u, v0 = s.v, a0 = s.a, p0 = s.p;  // sources overwrite a, p of their DOFs
+  double e = 1e-3;
+  for (Eigen::Index d = 0; d < s.a.size(); ++d) {
+    const double a = std::abs(a0(d));
+    const double lim = 1e-3 * (m.scales()[static_cast<std::size_t>(d)].potential + std::abs(v0(d)));
+    if (a * e > lim) e = lim / a;
+  }
+  if (std::isfinite(as.recommended_step()) && as.recommended_step() > 0) e = std::min(e, 1e-2 * as.recommended_step());
+  std::vector<double> f0(static_cast<std::size_t>(ne)), fh(static_cast<std::size_t>(ne)), d[3];
+  auto rows_at = [&](double t, std::vector<double>& rows) {
+    s.u = u0 + t * v0 + (0.5 * t * t) * a0;
+    s.v = v0 + t * a0;
+    if constexpr (std::is_invocable_v<Evaluate&, jacobian_coefficients, bool, double>)
+      evaluate(jacobian_coefficients{0, 0, 0}, false, t);
+    else
+      evaluate(jacobian_coefficients{0, 0, 0}, false);
+    for (int i = 0; i < ne; ++i) rows[static_cast<std::size_t>(i)] = as.residual()(as.dof_of(i));
+  };
+  auto restore = [&] {
+    s.u = u0;
+    s.v = v0;
+    s.a = a0;
+    s.p = p0;
+    evaluate(jacobian_coefficients{0, 0, 0}, false);
+  };
+  try {
+    rows_at(0.0, f0);
+    for (int k = 0; k < 3; ++k) {
+      const double h = std::ldexp(e, -k);
+      rows_at(h, fh);
+      d[k].resize(static_cast<std::size_t>(ne));
+      for (std::size_t i = 0; i < d[k].size(); ++i) d[k][i] = (fh[i] - f0[i]) / h;
+    }
+  } catch (const error&) {
+    restore();
+    throw;
+  }
+  restore();
+  out.resize(static_cast<std::size_t>(ne));
+  for (std::size_t i = 0; i < out.size(); ++i) {  // D(h) = F' + F'' h / 2 + F''' h^2 / 6 + ...: eliminate h, then h^2
+    const double r1 = 2 * d[1][i] - d[0][i], r2 = 2 * d[2][i] - d[1][i];
+    out[i] = (4 * r2 - r1) / 3;
+  }
+}
+
+/// The right-hand sides of the kind-5 rows in the zero step's solve for the corrections of
+/// the accelerations: minus the rows' time derivatives along the motion with the current
+/// accelerations (rates_along_motion), G a + dF/dt at fixed a. Leaves the other rows as they are.
+template <class Model, class Assembler, class Evaluate>
+void velocity_constraint_rates(const Model& m, Assembler& as, global_state& s, const std::vector<char>& kind,
+                               std::vector<double>& rhs, Evaluate& evaluate) {
+  std::vector<double> dfdt;
+  rates_along_motion(m, as, s, evaluate, dfdt);
+  for (std::size_t i = 0; i < kind.size(); ++i)
+    if (kind[i] == 5) rhs[i] = -dfdt[i];
+}
+
 /// The rates of the viscous unknowns at the zero step: a viscous DOF's velocity (a pressure
 /// at a node without capacitance, the series point of a spring and a damper) follows from its
 /// equation F_i = 0, so its rate a_i follows from dF_i/dt = 0 along the motion. For the
-/// viscous equations (kind 2, not a node's hidden or slaved DOF) whose rows hold no inertia
-/// entry, dF_i/dt is taken by forward differences along u0 + t v + t^2 a / 2, v + t a at the
-/// times t0 + t (t = e, e / 2, e / 4 and two Richardson extrapolations, error O(e^3);
-/// e = 1e-3 s, less where a DOF's velocity would change by more than 1e-3 of its nominal
-/// potential plus its magnitude, and at most 1e-2 of the step an element recommends), and
-/// C_vv da_v = -dF_v/dt is solved for the viscous rates. Without this they started at 0 and
+/// viscous equations and velocity-level multipliers (kinds 2 and 4, not a node's hidden or
+/// slaved DOF) whose rows hold no inertia entry, dF_i/dt comes from rates_along_motion and
+/// C_vv da_v = -dF_v/dt is solved for their rates. Without this they started at 0 and
 /// the error test of the first steps saw the jump (a node between a pump and a check valve
-/// whose pressure rises with the accumulator behind the valve failed at SMIN). The nearby
-/// states are evaluated at their times with the kinematic sources at those times, so dF/dt
-/// includes a flow's explicit time dependence (a current source ISIN feeding a resistor:
-/// v' = R I'(0)) when `evaluate(c, want_jacobian, t)` takes that offset. The differences are
-/// one-sided because the run goes forward: a ramp that starts at t0 (a table source) has its
-/// rate after t0. A singular C_vv, or an element that refuses one of the nearby states, leaves
+/// whose pressure rises with the accumulator behind the valve failed at SMIN); with the
+/// explicit time dependence a current source ISIN feeding a resistor starts with
+/// v' = R I'(0). A singular C_vv, or an element that refuses one of the nearby states, leaves
 /// the rates at 0 with a warning.
 template <class Model, class Assembler, class Solver, class Evaluate>
 void viscous_rates(Model& m, Assembler& as, Solver& solver, global_state& s, run_statistics& stats,
@@ -234,7 +303,8 @@ void viscous_rates(Model& m, Assembler& as, Solver& solver, global_state& s, run
   std::vector<char> rate(static_cast<std::size_t>(ne), 0);
   bool any = false;
   for (int i = 0; i < ne; ++i) {
-    if (kind[static_cast<std::size_t>(i)] != 2 || hidden[static_cast<std::size_t>(as.dof_of(i))]) continue;
+    const char k = kind[static_cast<std::size_t>(i)];
+    if ((k != 2 && k != 4) || hidden[static_cast<std::size_t>(as.dof_of(i))]) continue;
     bool inertia = false;
     for (int q = pat.row_ptr[static_cast<std::size_t>(i)]; q < pat.row_ptr[static_cast<std::size_t>(i) + 1]; ++q)
       inertia = inertia || mvals[static_cast<std::size_t>(q)] != 0.0;
@@ -242,54 +312,18 @@ void viscous_rates(Model& m, Assembler& as, Solver& solver, global_state& s, run
     any = any || !inertia;
   }
   if (!any) return;
-  const Eigen::VectorXd u0 = s.u, v0 = s.v, a0 = s.a, p0 = s.p;  // sources overwrite a, p of their DOFs
-  double e = 1e-3;
-  for (Eigen::Index d = 0; d < s.a.size(); ++d) {
-    const double a = std::abs(a0(d));
-    const double lim = 1e-3 * (m.scales()[static_cast<std::size_t>(d)].potential + std::abs(v0(d)));
-    if (a * e > lim) e = lim / a;
-  }
-  if (std::isfinite(as.recommended_step()) && as.recommended_step() > 0) e = std::min(e, 1e-2 * as.recommended_step());
-  std::vector<double> f0(static_cast<std::size_t>(ne)), fh(static_cast<std::size_t>(ne)), d[3];
-  auto rows_at = [&](double t, std::vector<double>& out) {
-    s.u = u0 + t * v0 + (0.5 * t * t) * a0;
-    s.v = v0 + t * a0;
-    if constexpr (std::is_invocable_v<Evaluate&, jacobian_coefficients, bool, double>)
-      evaluate(jacobian_coefficients{0, 0, 0}, false, t);
-    else
-      evaluate(jacobian_coefficients{0, 0, 0}, false);
-    for (int i = 0; i < ne; ++i) out[static_cast<std::size_t>(i)] = as.residual()(as.dof_of(i));
-  };
-  auto restore = [&] {
-    s.u = u0;
-    s.v = v0;
-    s.a = a0;
-    s.p = p0;
-  };
+  std::vector<double> dfdt;
   try {
-    rows_at(0.0, f0);
-    for (int k = 0; k < 3; ++k) {
-      const double h = std::ldexp(e, -k);
-      rows_at(h, fh);
-      d[k].resize(static_cast<std::size_t>(ne));
-      for (std::size_t i = 0; i < d[k].size(); ++i) d[k][i] = (fh[i] - f0[i]) / h;
-    }
+    rates_along_motion(m, as, s, evaluate, dfdt);
   } catch (const error& ex) {  // an element refuses a state next to the start: keep the rates at 0
-    restore();
-    evaluate(jacobian_coefficients{0, 0, 0}, false);
     log.write("warning: no consistent rates of the viscous DOFs at the zero step: an element refuses a state "
               "next to the start (" + std::string(ex.what()) + "); they start at 0");
     return;
   }
-  restore();
   std::vector<double> j(cvals.size(), 0.0), rhs(static_cast<std::size_t>(ne), 0.0);
   for (int r = 0; r < ne; ++r) {
     const bool row = rate[static_cast<std::size_t>(r)] != 0;
-    if (row) {  // D(h) = F' + F'' h / 2 + F''' h^2 / 6 + ...: eliminate h, then h^2
-      const auto i = static_cast<std::size_t>(r);
-      const double r1 = 2 * d[1][i] - d[0][i], r2 = 2 * d[2][i] - d[1][i];
-      rhs[i] = -(4 * r2 - r1) / 3;
-    }
+    if (row) rhs[static_cast<std::size_t>(r)] = -dfdt[static_cast<std::size_t>(r)];
     for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
       const int c = pat.col[static_cast<std::size_t>(q)];
       if (row) j[static_cast<std::size_t>(q)] = rate[static_cast<std::size_t>(c)] ? cvals[static_cast<std::size_t>(q)] : 0.0;
