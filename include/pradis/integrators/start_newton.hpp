@@ -112,8 +112,9 @@ void add_start_correction(const Assembler& as, const std::vector<char>& kind, co
 /// solves with the matrix of start_matrix and, when the scaled residual (start_residual) grew
 /// above both its value before the step and DABSI, halves the step back (up to 40 times).
 /// Stops without applying a correction whose every component is within 1e-10 of its DOF's
-/// nominal potential plus the unknown's magnitude, or one that shrank by less than half
-/// (round-off, if the scaled residual is within DABSI; else it warns); after 30 iterations,
+/// nominal potential plus the unknown's magnitude, or one that shrank by less than half while
+/// the scaled residual is within DABSI (round-off), or, with a warning, one that did not shrink
+/// at all after a full step (no root nearby: the flow tends to a limit); after 30 iterations,
 /// or a step that cannot be halved into a decrease, or a singular matrix, or a non-finite
 /// correction, it keeps the best iterate and warns. The first step then fails in Newton if
 /// the flows cannot balance. `z` holds the first correction,
@@ -200,8 +201,13 @@ void refine_start(Model& m, Assembler& as, Solver& solver, global_state& s, std:
       return;
     }
     if (size <= 1e-10) return;
-    if (it > 0 && size > 0.5 * last_size) {  // no longer converging: round-off if the flows balance to DABSI
-      if (!(r <= dabsi)) warn("stopped converging (the corrections no longer shrink)");
+    // Corrections that no longer halve while the flows balance to DABSI: round-off. While they do
+    // not balance, Newton goes on as long as full steps shrink their corrections at all (an
+    // exponential far above its root takes steps of about n Vt each, slow but not stalled: a diode
+    // from 0 V), and after a halved step, up to 30 iterations.
+    if (it > 0 && size > 0.5 * last_size && r <= dabsi) return;
+    if (it > 0 && step == 1.0 && size >= last_size) {  // a halved step (global phase) is not judged
+      warn("stopped converging (the corrections no longer shrink)");
       return;
     }
     last_size = size;
