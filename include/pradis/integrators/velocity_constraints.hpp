@@ -16,10 +16,11 @@
 ///   in it as the initial conditions set them; the unknown is the DOF's value v;
 /// - kind 5, when every unknown the row reaches through C is inertial (kind 1; a
 ///   capacitor across the source): the row constrains potentials that the initial
-///   conditions fix. They are moved onto the constraint (the least change,
-///   project_velocity_constraints, with a warning), and the row is replaced by
-///   its time derivative, G a + dF/dt = 0 (start_newton.hpp, velocity_constraint_rates), solved with
-///   the accelerations for the multiplier's value.
+///   conditions fix. They are moved onto the constraint as an impulsive flow
+///   would move them (project_velocity_constraints, with a warning), and the row
+///   is replaced by its time derivative, G a + dF/dt = 0 (start_newton.hpp,
+///   velocity_constraint_rates), solved with the accelerations for the
+///   multiplier's value.
 /// A row that reaches an unknown of another kind (an algebraic DOF with a diagonal
 /// stiffness, a multiplier) stays algebraic (kind 0) and is met at the first step.
 
