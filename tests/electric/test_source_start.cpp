@@ -9,9 +9,11 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <span>
 #include <sstream>
 #include <string>
 
@@ -76,6 +78,35 @@ double fss_rc_charge(double tol, double kcl_bound) {
   CHECK(worst_kcl < kcl_bound);
   return worst;
 }
+
+/// A 10 Ohm conductance that refuses (code 75) every evaluation at times in (0, 1e-4): the zero
+/// step's difference quotients along the motion (at most 1e-3 s ahead, here 1e-5 by VSIN2's
+/// recommended step) meet the refusal, a run at steps of 1 ms never does.
+template <class = void>
+struct fss_fragile_t {
+  static constexpr pradis::passport passport{.name = "FRAGILE", .ext = 1, .par = 0, .adr = 2, .ign = 3};
+  static constexpr std::array<domain, 1> domains{domain::electric};
+  static constexpr element_help help{.title = "conductance that refuses early times",
+                                     .name = "i = v / 10, code 75 if 0 < t < 1e-4",
+                                     .field = "electric",
+                                     .dofs = "1 - the node",
+                                     .parameters = "none",
+                                     .work = "none",
+                                     .special = "code 75 if 0 < t < 1e-4"};
+  struct parameters {};
+  parameters p;
+  explicit fss_fragile_t(parameters q = {}) : p(q) {}
+  static parameters example() { return {}; }
+  static fss_fragile_t from_parameters(std::span<const double>) { return fss_fragile_t{}; }
+  void evaluate(const local_input<fss_fragile_t>& in, local_output<fss_fragile_t>& out, element_context& ctx) const {
+    if (in.t > 0 && in.t < 1e-4) ctx.singular("refused near the start");
+    out.f(0) = in.v(0) / 10;
+    if (out.want_jacobian) out.C(0, 0) = 0.1;
+  }
+};
+using fss_fragile = fss_fragile_t<>;
+
+using fss_model_fragile = model<floating_voltage_sine, capacitor, fss_fragile>;
 
 template <class M>
 using fss_newmark = simulation<M>;
@@ -363,5 +394,33 @@ TEST_SUITE("electric/floating sources at the zero step") {
     SUBCASE("across a resistor, BDF") { run.template operator()<fss_bdf>(false); }
     SUBCASE("across a capacitor, NEWMARK") { run.template operator()<fss_newmark>(true); }
     SUBCASE("across a capacitor, BDF") { run.template operator()<fss_bdf>(true); }
+  }
+
+  TEST_CASE("an element that refuses the states next to the start: the source across a capacitor starts the old way") {
+    // VSIN2 across a capacitor with fss_fragile as the load: the potential still moves onto the
+    // source at t = 0, but the derivative row cannot be formed; the warning says so, the current
+    // starts at its initial 0 and the first step meets the constraint (fixed steps of 1 ms).
+    fss_model_fragile md;
+    const dof a = md.add_dof("a");
+    const auto src = md.add<floating_voltage_sine>("V", {1.0, 50.0, 0.0, 5.0}, a, md.ground());
+    md.add<capacitor>("C", {1e-3}, a, md.ground());
+    md.add<fss_fragile>("load", {}, a);
+    simulation sim(md);
+    std::ostringstream out;
+    sim.log().to(out);
+    double i0 = -1, worst = 0;
+    sim.on_output([&](const auto& s) {
+      if (s.time() == 0) i0 = md.work(src)[0];
+      worst = std::max(worst, std::abs(s.v(a) - (5 + std::sin(2 * std::numbers::pi * 50 * s.time()))));
+    });
+    sim.run(pradis_element_tests::fixed_step(0.01, 1e-3));
+    const std::string log = out.str();
+    CAPTURE(log);
+    CHECK(fss_count(log, "warning: the constraints of sources across inertial DOFs are met from the first step only: "
+                         "an element refuses a state next to the start (") == 1);
+    CHECK(log.find("refused near the start") != std::string::npos);
+    CHECK(fss_count(log, "warning: the initial potential of DOF 'a' moves from 0 to 5") == 1);
+    CHECK(i0 == 0.0);
+    CHECK(worst < 1e-12);  // the constraint row, linear in the free potential, from t = 0 on
   }
 }
