@@ -183,8 +183,11 @@ class driver_core {
   /// Per DOF: left out of the local error tests: the index-3 multipliers (index3_) and the
   /// slaved DOFs of the nodes (core/node_kind.hpp: functions of their node's other DOFs).
   const std::vector<char>& error_skip() const noexcept { return error_skip_; }
-  /// Per DOF: held by an index-3 constraint (a column of a constraint's row): Newton puts its position on the
-  /// constraint to round-off, which the local error test of the one-step schemes counts (step_control.hpp).
+  /// Per DOF: held by an index-3 constraint (a column of a constraint's row), or massless (neither mass nor
+  /// viscosity): Newton puts its position on the constraint or on its equation to round-off, which the local
+  /// error test of the one-step schemes counts (step_control.hpp). A mass on a spring to a massless node held by
+  /// a second spring, started with the node on its equation (algebraic_start.hpp), had NEWMARK's estimate of
+  /// the node's round-off, about eps |u| / h, hold the first steps near SMIN until code 141 at t = 2.7e-9.
   const std::vector<char>& constrained() const noexcept { return constrained_; }
   /// Sets index3_, the massless DOFs and their count from classes as dof_classes() gives them.
   void set_dof_classes(const std::vector<double>& classes) {
@@ -201,7 +204,7 @@ class driver_core {
         if (massless_count_++ == 0) massless_dof_ = static_cast<int>(d);
       }
     }
-    constrained_.assign(classes.size(), 0);
+    constrained_ = massless_;
     const auto& pat = asm_.pattern();
     for (std::size_t d = 0; d < classes.size(); ++d) {
       const int r = index3_[d] ? asm_.equation_of(static_cast<int>(d)) : -1;
@@ -259,7 +262,7 @@ class driver_core {
   /// not by an integrated derivative; Hairer and Wanner, Solving ODEs II, VII.3).
   std::vector<char> index3_;
   std::vector<char> error_skip_;  // index3_ and the slaved DOFs (error_skip())
-  std::vector<char> constrained_;  // the columns of the index-3 constraints' rows (constrained())
+  std::vector<char> constrained_;  // the massless DOFs and the columns of the index-3 constraints' rows (constrained())
   /// Equations with neither mass nor viscosity (algebraic, found at the zero step; index-3 multipliers and the
   /// nodes' hidden DOFs, such as the rotational q4, not counted), and the first one's DOF (-1 if none): the
   /// undamped-scheme warning of simulation::run names it.

@@ -20,6 +20,7 @@
 #include "pradis/core/element.hpp"
 #include "pradis/core/error.hpp"
 #include "pradis/core/node_kind.hpp"
+#include "pradis/integrators/algebraic_start.hpp"
 #include "pradis/integrators/node_start.hpp"
 #include "pradis/integrators/options.hpp"
 #include "pradis/integrators/start_newton.hpp"
@@ -157,8 +158,8 @@ bool mark_index3_multipliers(const Pattern& pat, const std::vector<double>& mval
 /// Consistent initial derivatives at the zero step. The unknown of each free
 /// DOF is its acceleration if it has inertia (dF/da diagonal nonzero), else its
 /// velocity if it has viscosity (a first-order DOF, e.g. the series point of a
-/// spring and a damper), else nothing (an algebraic DOF: its equation is met
-/// by Newton at the first step). Newton on F(u0, v0, a0, 0) = 0 with
+/// spring and a damper), else nothing (an algebraic DOF: algebraic_start has put
+/// its position on its equation, or the first step's Newton will). Newton on F(u0, v0, a0, 0) = 0 with
 /// J = M (inertial columns) + C (viscous columns) + I (algebraic columns): one
 /// step, and more while viscous DOFs have nonlinear flows (refine_start).
 /// Without it the trapezoidal u-v relation of the Newmark family would carry
@@ -179,7 +180,12 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
                                       std::vector<double>& rhs, run_statistics& stats, diagnostics& log,
                                       double dabsi, Evaluate&& evaluate) {
   if constexpr (!Assembler::any_m && !Assembler::any_c) {
-    return std::vector<char>(static_cast<std::size_t>(as.equations()), 0);  // every DOF is algebraic
+    // Every DOF is algebraic (a static model run as a transient): its positions on its equations.
+    std::vector<char> kind(static_cast<std::size_t>(as.equations()), 0);
+    evaluate(jacobian_coefficients{1, 0, 0}, true);
+    const std::vector<double> kvals(as.values().begin(), as.values().end());
+    algebraic_start(m, as, solver, s, stats, log, evaluate, kind, kvals, dabsi);
+    return kind;
   } else {
     const int ne = as.equations();
     const auto& pat = as.pattern();
@@ -209,22 +215,29 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
     // becomes its first time derivative.
     std::vector<double> kvals;
     std::vector<double> rhs_plain = rhs;
+    // The flows, M, C and K again, at a state the start has moved.
+    auto again = [&] {
+      evaluate(jacobian_coefficients{0, 0, 1}, true);
+      mvals.assign(as.values().begin(), as.values().end());
+      for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
+      rhs_plain = rhs;
+      if constexpr (Assembler::any_c) {
+        evaluate(jacobian_coefficients{0, 1, 0}, true);
+        cvals.assign(as.values().begin(), as.values().end());
+      }
+      evaluate(jacobian_coefficients{1, 0, 0}, true);
+      kvals.assign(as.values().begin(), as.values().end());
+    };
     if (std::find(kind.begin(), kind.end(), char{0}) != kind.end()) {
       evaluate(jacobian_coefficients{1, 0, 0}, true);
       kvals.assign(as.values().begin(), as.values().end());
       const bool index3 = mark_index3_multipliers(pat, mvals, cvals, kvals, kind);
-      if (mark_velocity_multipliers(pat, mvals, cvals, kvals, kind)) {
+      const bool velocity = mark_velocity_multipliers(pat, mvals, cvals, kvals, kind);
+      // Algebraic DOFs on their equations first (algebraic_start.hpp): the flows on the others follow.
+      if (algebraic_start(m, as, solver, s, stats, log, evaluate, kind, kvals, dabsi)) again();
+      if (velocity) {
         if (project_velocity_constraints(m, as, kind, mvals, cvals, s, log)) {
-          evaluate(jacobian_coefficients{0, 0, 1}, true);  // the flows, M, C and K at the moved potentials
-          mvals.assign(as.values().begin(), as.values().end());
-          for (int i = 0; i < ne; ++i) rhs[static_cast<std::size_t>(i)] = -as.residual()(as.dof_of(i));
-          rhs_plain = rhs;
-          if constexpr (Assembler::any_c) {
-            evaluate(jacobian_coefficients{0, 1, 0}, true);
-            cvals.assign(as.values().begin(), as.values().end());
-          }
-          evaluate(jacobian_coefficients{1, 0, 0}, true);
-          kvals.assign(as.values().begin(), as.values().end());
+          again();  // at the moved potentials
           try {
             velocity_constraint_rates(m, as, s, kind, rhs, evaluate);
           } catch (const error& e) {
@@ -299,8 +312,8 @@ void warn_lost_initial_conditions(const Model& m, const Assembler& as, const std
     if (k == 0 && !set_u[d].empty())
       log.write("warning: the initial displacement set by '" + set_u[d] + "' on DOF '" +
                 m.dof_name(static_cast<int>(d)) +
-                "' is lost after the first step: the DOF has neither mass nor viscosity, so its displacement "
-                "follows from its equation");
+                "' is not kept: the DOF has neither mass nor viscosity, so its displacement follows from its "
+                "equation");
     if (k != 1 && !set_v[d].empty())
       log.write("warning: the initial velocity set by '" + set_v[d] + "' on DOF '" + m.dof_name(static_cast<int>(d)) +
                 "' is not kept: the DOF has no mass, so its velocity follows from its equation");

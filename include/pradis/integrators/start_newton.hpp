@@ -111,8 +111,8 @@ void add_start_correction(const Assembler& as, const std::vector<char>& kind, co
 /// "The zero step"). Each iteration evaluates M, C and the residual at the current unknowns,
 /// solves with the matrix of start_matrix and, when the scaled residual (start_residual) grew
 /// above both its value before the step and DABSI, halves the step back (up to 40 times).
-/// Stops without applying a correction whose every component is within 1e-10 of its DOF's
-/// nominal potential plus the unknown's magnitude, or one that shrank by less than half while
+/// Stops after applying a correction whose every component is within 1e-10 of its DOF's
+/// nominal potential plus the unknown's magnitude, or without one that shrank by less than half while
 /// the scaled residual is within DABSI (round-off), or, with a warning, one that did not shrink
 /// at all after a full step (no root nearby: the flow tends to a limit); after 30 iterations,
 /// or a step that cannot be halved into a decrease, or a singular matrix, or a non-finite
@@ -200,7 +200,14 @@ void refine_start(Model& m, Assembler& as, Solver& solver, global_state& s, std:
       warn("met a non-finite correction");
       return;
     }
-    if (size <= 1e-10) return;
+    if (size <= 1e-10) {
+      // Applied: Newton's next error is of the order of its square, round-off. Left out, it would
+      // be the first step's correction, and a correction d at a first step h gives the
+      // trapezoidal rule's rate 2 d / h, which alternates undamped afterwards (a diode node
+      // fed by VDC2: d = 1e-10 V at h = 1e-11 s started an alternation of 20 V/s).
+      add_start_correction(as, kind, rhs, 1.0, s);
+      return;
+    }
     // Corrections that no longer halve while the flows balance to DABSI: round-off. While they do
     // not balance, Newton goes on as long as full steps shrink their corrections at all (an
     // exponential far above its root takes steps of about n Vt each, slow but not stalled: a diode

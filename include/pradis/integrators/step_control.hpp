@@ -52,7 +52,7 @@ inline constexpr double max_step_growth = 10.0;
 /// (r <= 7), c h r^(1/4), c = 0.8, clamped to [max(SMIN, CONTROL), SMAX].
 /// DOFs marked in `skip` (per DOF index; empty: none) are left out: the
 /// multipliers of index-3 constraints. The tolerance of a DOF marked in
-/// `constrained` (held by an index-3 constraint) also holds the round-off floor of
+/// `constrained` (held by an index-3 constraint, or massless) also holds the round-off floor of
 /// its estimate, 4 eps |u| / h (velocity units), which matters only at steps far
 /// below the motion's time scale (first steps of SMIN).
 template <Integrator Scheme, class Assembler>
