@@ -25,12 +25,16 @@
 #include <vector>
 
 #include "dense_test_solver.hpp"
+#include "zero_step_test_support.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/bdf/bdf_simulation.hpp"
 #include "pradis/integrators/simulation.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
+using pradis_test::count_of;
+using pradis_test::observed_run;
+using pradis_test::run_outcome;
 
 namespace {
 
@@ -101,58 +105,22 @@ struct ast_fragile {
   static bool refuse(double, double t) { return t > 0 && t < 2e-3; }
 };
 
-/// What a run did: its log, how it ended, and the observed DOFs at t = 0 and at the end.
-struct ast_outcome {
-  std::string log, what;
-  bool failed = false;
-  error_code code{};
-  std::vector<double> u0, v0, u_end;
-};
-
-template <class Sim, class Model>
-ast_outcome ast_run(Model& md, const std::vector<dof>& ds, const run_options& o) {
-  Sim sim(md);
-  std::ostringstream log;
-  sim.log().to(log);
-  ast_outcome r;
-  sim.on_output([&](const auto& s) {
-    if (s.time() != 0) return;
-    for (const dof d : ds) r.u0.push_back(s.u(d)), r.v0.push_back(s.v(d));
-  });
-  try {
-    sim.run(o);
-  } catch (const error& e) {
-    r.failed = true;
-    r.code = e.code();
-    r.what = e.what();
-  }
-  for (const dof d : ds) r.u_end.push_back(sim.u(d));
-  r.log = log.str();
-  return r;
-}
-
 /// A static run of one ast_law_t<Law> on one DOF started at u0, with the one-step (Newmark) or the BDF driver.
 template <class Law, bool Bdf, class Solver = linalg::sparse_lu<linalg::automatic_ordering>>
-ast_outcome ast_law_run(double u0, const run_options& o) {
+run_outcome ast_law_run(double u0, const run_options& o) {
   using E = ast_law_t<Law>;
   using M = model<E, initial_displacement>;
   M md;
   const dof u = md.add_dof("u");
   md.template add<E>("law", {}, u);
   if (u0 != 0) md.template add<initial_displacement>("u0", {u0}, u);
-  if constexpr (Bdf) return ast_run<bdf_simulation<M, Solver>>(md, {u}, o);
-  else return ast_run<simulation<M, newmark, Solver>>(md, {u}, o);
+  if constexpr (Bdf) return observed_run<bdf_simulation<M, Solver>>(md, {u}, o);
+  else return observed_run<simulation<M, newmark, Solver>>(md, {u}, o);
 }
 
 std::string ast_warning(const std::string& why) {
   return "warning: the positions of the DOFs with neither mass nor viscosity were not solved at the zero step (" +
          why + "): they start at their initial values, and the first step meets their equations";
-}
-
-std::size_t ast_count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
-  return n;
 }
 
 run_options ast_controlled(double end, double tol) {
@@ -287,9 +255,9 @@ TEST_SUITE("integrators/algebraic start") {
     o.smax = 1e-3;
     o.newton.itr = 60;
     o.newton.dabsi = 1e-8;
-    const ast_outcome r = ast_law_run<ast_power, false>(0, o);
+    const run_outcome r = ast_law_run<ast_power, false>(0, o);
     CAPTURE(r.log);
-    CHECK(ast_count(r.log, ast_warning("no convergence in 30 Newton iterations")) == 1);
+    CHECK(count_of(r.log, ast_warning("no convergence in 30 Newton iterations")) == 1);
     REQUIRE(r.u0.size() == 1);
     CHECK(r.u0[0] == 0.0);
     CHECK(r.v0[0] == 0.0);
@@ -302,10 +270,10 @@ TEST_SUITE("integrators/algebraic start") {
     // t = 2^-k: 40 halvings, then u = 0 again. The first step's Newton goes the same wrong way: code 140.
     for (const bool bdf : {false, true}) {
       CAPTURE(bdf);
-      const ast_outcome r =
+      const run_outcome r =
           bdf ? ast_law_run<ast_wrong_sign, true>(0, ast_controlled(1, 1e-6)) : ast_law_run<ast_wrong_sign, false>(0, ast_controlled(1, 1e-6));
       CAPTURE(r.log);
-      CHECK(ast_count(r.log, ast_warning("no step lowers the residual")) == 1);
+      CHECK(count_of(r.log, ast_warning("no step lowers the residual")) == 1);
       REQUIRE(r.u0.size() == 1);
       CHECK(r.u0[0] == 0.0);
       CHECK(r.failed);
@@ -325,9 +293,9 @@ TEST_SUITE("integrators/algebraic start") {
     md.add<linear_spring>("k2", {300.0}, n, md.ground());
     md.add<linear_spring>("k3", {50.0}, p, q);
     md.add<initial_displacement>("x0", {0.1}, x);
-    const ast_outcome r = ast_run<simulation<M>>(md, {n}, ast_controlled(1, 1e-6));
+    const run_outcome r = observed_run<simulation<M>>(md, {n}, ast_controlled(1, 1e-6));
     CAPTURE(r.log);
-    CHECK(ast_count(r.log, "warning: the positions of the DOFs with neither mass nor viscosity were not solved at the "
+    CHECK(count_of(r.log, "warning: the positions of the DOFs with neither mass nor viscosity were not solved at the "
                            "zero step (a singular matrix: pradis error 131") == 1);
     REQUIRE(r.u0.size() == 1);
     CHECK(r.u0[0] == 0.0);  // the initial value
@@ -341,9 +309,9 @@ TEST_SUITE("integrators/algebraic start") {
     run_options o;
     o.end = 1e-2;
     o.smax = 1e-3;
-    const ast_outcome r = ast_law_run<ast_subnormal, false, solver>(0, o);
+    const run_outcome r = ast_law_run<ast_subnormal, false, solver>(0, o);
     CAPTURE(r.log);
-    CHECK(ast_count(r.log, ast_warning("a non-finite correction")) == 1);
+    CHECK(count_of(r.log, ast_warning("a non-finite correction")) == 1);
     REQUIRE(r.u0.size() == 1);
     CHECK(r.u0[0] == 0.0);
     CHECK(r.failed);  // the first step's correction is not finite either
@@ -357,9 +325,9 @@ TEST_SUITE("integrators/algebraic start") {
       run_options o;
       o.end = 1e-2;
       o.smax = 1e-3;
-      const ast_outcome r = ast_law_run<ast_root_refused, false>(1 - 1e-11, o);
+      const run_outcome r = ast_law_run<ast_root_refused, false>(1 - 1e-11, o);
       CAPTURE(r.log);
-      CHECK(ast_count(r.log, ast_warning("an element refuses the solved state")) == 1);
+      CHECK(count_of(r.log, ast_warning("an element refuses the solved state")) == 1);
       REQUIRE(r.u0.size() == 1);
       CHECK(r.u0[0] == 1 - 1e-11);
       CHECK(r.failed);
@@ -380,9 +348,9 @@ TEST_SUITE("integrators/algebraic start") {
       run_options o;
       o.end = 0.1;
       o.smax = 1e-2;
-      const ast_outcome r = ast_run<simulation<M>>(md, {n}, o);
+      const run_outcome r = observed_run<simulation<M>>(md, {n}, o);
       CAPTURE(r.log);
-      CHECK(ast_count(r.log, "warning: the positions of the DOFs with neither mass nor viscosity were not solved at "
+      CHECK(count_of(r.log, "warning: the positions of the DOFs with neither mass nor viscosity were not solved at "
                              "the zero step (an element refuses a state next to the start: ") == 1);
       CHECK(r.log.find("refused") != std::string::npos);
       REQUIRE(r.u0.size() == 1);
@@ -401,9 +369,9 @@ TEST_SUITE("integrators/algebraic start") {
     md.add<linear_spring>("k2", {300.0}, n, md.ground());
     md.add<initial_displacement>("x0", {0.1}, x);
     md.add<initial_displacement>("n0", {0.5}, n);
-    const ast_outcome r = ast_run<simulation<M>>(md, {n}, ast_controlled(0.1, 1e-6));
+    const run_outcome r = observed_run<simulation<M>>(md, {n}, ast_controlled(0.1, 1e-6));
     CAPTURE(r.log);
-    CHECK(ast_count(r.log, "warning: the initial displacement set by 'n0' on DOF 'n' is not kept: the DOF has "
+    CHECK(count_of(r.log, "warning: the initial displacement set by 'n0' on DOF 'n' is not kept: the DOF has "
                            "neither mass nor viscosity, so its displacement follows from its equation") == 1);
     REQUIRE(r.u0.size() == 1);
     CHECK(r.u0[0] == doctest::Approx(0.025).epsilon(1e-14));

@@ -32,10 +32,14 @@
 #include <vector>
 
 #include "dense_test_solver.hpp"
+#include "zero_step_test_support.hpp"
 #include "pradis/integrators/bdf/bdf_simulation.hpp"
 #include "pradis/integrators/simulation.hpp"
 
 using namespace pradis;
+using pradis_test::count_of;
+using pradis_test::observed_run;
+using pradis_test::run_outcome;
 
 namespace {
 
@@ -123,39 +127,6 @@ struct zsw_block_t {
 };
 using zsw_block = zsw_block_t<>;
 
-/// What a run did: its log, the pradis::error that ended it (if any), the state of the
-/// observed DOFs at t = 0 and at the end.
-struct zsw_outcome {
-  std::string log, what;
-  bool failed = false;
-  error_code code{};
-  double t_end = std::numeric_limits<double>::quiet_NaN();
-  std::vector<double> v0, a0, v_end, u_end;
-};
-
-template <class Sim, class Model>
-zsw_outcome zsw_run(Model& md, const std::vector<dof>& ds, const run_options& o) {
-  Sim sim(md);
-  std::ostringstream log;
-  sim.log().to(log);
-  zsw_outcome r;
-  sim.on_output([&](const auto& s) {
-    if (s.time() != 0) return;
-    for (const dof d : ds) r.v0.push_back(s.v(d)), r.a0.push_back(s.a(d));
-  });
-  try {
-    sim.run(o);
-  } catch (const error& e) {
-    r.failed = true;
-    r.code = e.code();
-    r.what = e.what();
-  }
-  r.t_end = sim.time();
-  for (const dof d : ds) r.v_end.push_back(sim.v(d)), r.u_end.push_back(sim.u(d));
-  r.log = log.str();
-  return r;
-}
-
 /// A user's solver for diagonal matrices, x_i = b_i / A_ii, with no check at all: on a zero
 /// pivot it returns what IEEE division gives (+-inf, or NaN for 0 / 0).
 struct zsw_diagonal_solver {
@@ -174,19 +145,13 @@ struct zsw_diagonal_solver {
 
 /// A run of one zsw_flow_t<Law> on one DOF, with the one-step (Newmark) or the BDF driver.
 template <class Law, bool Bdf, class Solver = linalg::sparse_lu<linalg::automatic_ordering>>
-zsw_outcome zsw_law_run(const run_options& o) {
+run_outcome zsw_law_run(const run_options& o) {
   using E = zsw_flow_t<Law>;
   model<E> md;
   const dof v = md.add_dof("v");
   md.template add<E>("law", {}, v);
-  if constexpr (Bdf) return zsw_run<bdf_simulation<model<E>, Solver>>(md, {v}, o);
-  else return zsw_run<simulation<model<E>, newmark, Solver>>(md, {v}, o);
-}
-
-std::size_t zsw_count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
-  return n;
+  if constexpr (Bdf) return observed_run<bdf_simulation<model<E>, Solver>>(md, {v}, o);
+  else return observed_run<simulation<model<E>, newmark, Solver>>(md, {v}, o);
 }
 
 /// refine_start's warning (start_newton.hpp, the `warn` lambda).
@@ -211,10 +176,10 @@ TEST_SUITE("integrators/zero step warnings") {
     // F has no root, so the first step fails in Newton (code 140) at t = 0.
     for (const bool bdf : {false, true}) {
       CAPTURE(bdf);
-      const zsw_outcome r =
+      const run_outcome r =
           bdf ? zsw_law_run<zsw_coulomb, true>(zsw_short) : zsw_law_run<zsw_coulomb, false>(zsw_short);
       CAPTURE(r.log);
-      CHECK(zsw_count(r.log, zsw_refine_warning("found no step that lowers the flow residual")) == 1);
+      CHECK(count_of(r.log, zsw_refine_warning("found no step that lowers the flow residual")) == 1);
       REQUIRE(r.v0.size() == 1);
       CHECK(r.v0[0] == 0.0);  // the iterate before the step: the start
       CHECK(r.a0[0] == 0.0);  // viscous_rates: F does not change along the motion (v0 = a0 = 0)
@@ -238,9 +203,9 @@ TEST_SUITE("integrators/zero step warnings") {
     // (The BDF driver is left out: it fails with code 140 on this law even when the zero step
     // converges without a warning, e.g. for n = 1.5: the Newton matrix c n |w|^(n-1) vanishes at
     // the root, which the zero step does not cause.)
-    const zsw_outcome r = zsw_law_run<zsw_drag, false>(zsw_short);
+    const run_outcome r = zsw_law_run<zsw_drag, false>(zsw_short);
     CAPTURE(r.log);
-    CHECK(zsw_count(r.log, zsw_refine_warning("did not converge in 30 iterations")) == 1);
+    CHECK(count_of(r.log, zsw_refine_warning("did not converge in 30 iterations")) == 1);
     CHECK(r.log.find("stopped converging") == std::string::npos);
     const double q = 1 - 1 / zsw_drag::n;
     REQUIRE(r.v0.size() == 1);
@@ -261,7 +226,7 @@ TEST_SUITE("integrators/zero step warnings") {
     // size, so the run ends at t = 0 with code 131 (the root v = -2.10 is never approached).
     for (const bool bdf : {false, true}) {
       CAPTURE(bdf);
-      const zsw_outcome r =
+      const run_outcome r =
           bdf ? zsw_law_run<zsw_stribeck, true>(zsw_short) : zsw_law_run<zsw_stribeck, false>(zsw_short);
       CAPTURE(r.log);
       // refine_start's warning around sparse_lu's message (the `warn` lambda, "met a singular matrix (" + what + ")").
@@ -270,7 +235,7 @@ TEST_SUITE("integrators/zero step warnings") {
           "(pradis error 131");
       CHECK(path3 != std::string::npos);
       CHECK(r.log.find("): the first step starts from the best iterate", path3) != std::string::npos);
-      CHECK(zsw_count(r.log, "the first step starts from the best iterate") == 1);
+      CHECK(count_of(r.log, "the first step starts from the best iterate") == 1);
       const std::size_t path5 = r.log.find(zsw_rates_head);
       CHECK(path5 != std::string::npos);
       CHECK(path5 > path3);  // refine_start runs first (initial_derivatives)
@@ -299,10 +264,10 @@ TEST_SUITE("integrators/zero step warnings") {
     using dense = pradis_test::dense_test_solver<>;
     for (const bool bdf : {false, true}) {
       CAPTURE(bdf);
-      const zsw_outcome r =
+      const run_outcome r =
           bdf ? zsw_law_run<zsw_stribeck, true, dense>(zsw_short) : zsw_law_run<zsw_stribeck, false, dense>(zsw_short);
       CAPTURE(r.log);
-      CHECK(zsw_count(r.log, zsw_refine_warning("met a non-finite correction")) == 1);
+      CHECK(count_of(r.log, zsw_refine_warning("met a non-finite correction")) == 1);
       REQUIRE(r.v0.size() == 1);
       CHECK(r.v0[0] == 1.0);
       CHECK(r.a0[0] == 0.0);
@@ -325,10 +290,10 @@ TEST_SUITE("integrators/zero step warnings") {
       model<zsw_block> md;
       const dof a = md.add_dof("a"), b = md.add_dof("b"), w = md.add_dof("w");
       md.add<zsw_block>("block", {}, a, b, w);
-      const zsw_outcome r = bdf ? zsw_run<bdf_simulation<model<zsw_block>>>(md, {a, b, w}, zsw_short)
-                                : zsw_run<simulation<model<zsw_block>>>(md, {a, b, w}, zsw_short);
+      const run_outcome r = bdf ? observed_run<bdf_simulation<model<zsw_block>>>(md, {a, b, w}, zsw_short)
+                                : observed_run<simulation<model<zsw_block>>>(md, {a, b, w}, zsw_short);
       CAPTURE(r.log);
-      CHECK(zsw_count(r.log, zsw_rates_head) == 1);
+      CHECK(count_of(r.log, zsw_rates_head) == 1);
       CHECK(r.log.find(zsw_rates_tail) != std::string::npos);
       CHECK(r.log.find("Newton iterations on the initial derivatives") == std::string::npos);
       CHECK_FALSE(r.failed);
@@ -353,11 +318,11 @@ TEST_SUITE("integrators/zero step warnings") {
     // would not be finite, so they start at 0 with a warning instead of a NaN state.
     for (const bool bdf : {false, true}) {
       CAPTURE(bdf);
-      const zsw_outcome r = bdf ? zsw_law_run<zsw_stribeck, true, zsw_diagonal_solver>(zsw_short)
+      const run_outcome r = bdf ? zsw_law_run<zsw_stribeck, true, zsw_diagonal_solver>(zsw_short)
                                 : zsw_law_run<zsw_stribeck, false, zsw_diagonal_solver>(zsw_short);
       CAPTURE(r.log);
-      CHECK(zsw_count(r.log, zsw_refine_warning("met a non-finite correction")) == 1);
-      CHECK(zsw_count(r.log, "warning: no consistent rates of the viscous DOFs at the zero step (their solve is not "
+      CHECK(count_of(r.log, zsw_refine_warning("met a non-finite correction")) == 1);
+      CHECK(count_of(r.log, "warning: no consistent rates of the viscous DOFs at the zero step (their solve is not "
                              "finite): they start at 0") == 1);
       REQUIRE(r.v0.size() == 1);
       CHECK(r.v0[0] == 1.0);
