@@ -14,9 +14,11 @@
 ///
 /// The algebraic DOFs taken: equations of kind 0 with a stiffness diagonal, not a DOF of a node
 /// (a rotational node's q1..q3 move with its hidden q4 and its norm; a slaved DOF follows its
-/// node), and not reached by a constraint row (an index-3 or velocity-level multiplier's row,
-/// or an algebraic row without a diagonal): a constraint's DOFs move with its multiplier,
-/// which this solve does not have. Those are left to the first step, as before.
+/// node), not reached by a constraint row (an index-3 or velocity-level multiplier's row, or an
+/// algebraic row without a diagonal: a constraint's DOFs move with its multiplier, which this
+/// solve does not have), and not coupled through dF/du, directly or through other algebraic
+/// DOFs, to one of those: a group of algebraic DOFs is solved whole or left whole. What is left
+/// goes to the first step, as before (the translations of a massless beam's nodes, for one).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -49,18 +51,35 @@ std::vector<char> algebraic_rows(const Model& m, const Assembler& as, const std:
       for (const int d : n.dofs)
         if (d >= 0 && d < m.dof_count()) node[static_cast<std::size_t>(d)] = 1;
   });
-  std::vector<char> alg(static_cast<std::size_t>(ne), 0), held(static_cast<std::size_t>(ne), 0);
+  const auto z = [](int i) { return static_cast<std::size_t>(i); };
+  // left[i]: an algebraic equation this solve cannot take (a node's DOF, no diagonal, or a column of a
+  // constraint's row); then every algebraic equation coupled to one through dF/du is left too, so that a
+  // group of algebraic DOFs is solved whole or not at all (a massless beam node's translations stay with
+  // its rotations, which the first step moves).
+  std::vector<char> left(z(ne), 0);
+  std::vector<std::vector<int>> coupled(z(ne));
   for (int i = 0; i < ne; ++i) {
-    const char k = kind[static_cast<std::size_t>(i)];
+    const char k = kind[z(i)];
     const int q = pat.find(i, i);
-    const bool diagonal = q >= 0 && kvals[static_cast<std::size_t>(q)] != 0.0;
-    if (k == 0 && diagonal && !node[static_cast<std::size_t>(as.dof_of(i))]) alg[static_cast<std::size_t>(i)] = 1;
-    if (k >= 3 || (k == 0 && !diagonal))  // a constraint's row: its columns stay
-      for (int p = pat.row_ptr[static_cast<std::size_t>(i)]; p < pat.row_ptr[static_cast<std::size_t>(i) + 1]; ++p)
-        held[static_cast<std::size_t>(pat.col[static_cast<std::size_t>(p)])] = 1;
+    const bool diagonal = q >= 0 && kvals[z(q)] != 0.0;
+    if (k == 0 && (!diagonal || node[z(as.dof_of(i))])) left[z(i)] = 1;
+    for (int p = pat.row_ptr[z(i)]; p < pat.row_ptr[z(i) + 1]; ++p) {
+      const int c = pat.col[z(p)];
+      if (k >= 3 || (k == 0 && !diagonal)) left[z(c)] = 1;  // a constraint's row: its columns stay
+      if (k == 0 && kind[z(c)] == 0 && c != i) coupled[z(i)].push_back(c), coupled[z(c)].push_back(i);
+    }
   }
+  std::vector<int> stack;
   for (int i = 0; i < ne; ++i)
-    if (held[static_cast<std::size_t>(i)]) alg[static_cast<std::size_t>(i)] = 0;
+    if (left[z(i)] && kind[z(i)] == 0) stack.push_back(i);
+  while (!stack.empty()) {
+    const int i = stack.back();
+    stack.pop_back();
+    for (const int c : coupled[z(i)])
+      if (!left[z(c)]) left[z(c)] = 1, stack.push_back(c);
+  }
+  std::vector<char> alg(z(ne), 0);
+  for (int i = 0; i < ne; ++i) alg[z(i)] = kind[z(i)] == 0 && !left[z(i)];
   return alg;
 }
 
