@@ -304,6 +304,10 @@ struct condensed {
   /// situation (code 75) fails the test. Near the root the full step passes at once, so the line search costs one
   /// back-substitution there; far from it (the external nodes moved far since the last accepted step) it keeps the
   /// iterates from diverging.
+  /// Eigen's estimate of the reciprocal condition number of lu, out of line: inlined into the element's
+  /// callers, GCC 12 (-O2) took the estimator's sign vector (ConditionEstimator.h, old_sign_vector, which
+  /// Eigen assigns before it reads it) for uninitialised (-Wmaybe-uninitialized, in bench_kernel.cpp).
+  [[gnu::noinline]] static double reciprocal_condition(const Eigen::PartialPivLU<mat_ii>& lu) { return lu.rcond(); }
   int condense(local_input<full_type>& fin, local_output<full_type>& fo, Eigen::PartialPivLU<mat_ii>& lu, vec_i& du,
                element_context& ctx) const {
     start_inner_nodes(fin);
@@ -314,7 +318,7 @@ struct condensed {
     int it = 1;
     for (;;) {
       lu.compute(kii);
-      const double rc = lu.rcond();
+      const double rc = reciprocal_condition(lu);
       if (!(rc > 1e-14))
         ctx.singular("the stiffness of the condensed DOFs is singular (reciprocal condition number " +
                      std::to_string(rc) + "): an internal DOF is held by no stiffness in this state");
