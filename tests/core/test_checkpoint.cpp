@@ -275,10 +275,10 @@ TEST_SUITE("core/checkpoint") {
       std::memcpy(bad.data() + head + n, &sum, sizeof sum);
       refused(bad, "checkpoint damaged: its time is not finite");
     }
-    // A DOF class (the payload's last field, one double per DOF) that is none of 0, 1, 3, with a valid checksum.
+    // A DOF class (the payload's last field, one double per DOF) that is none of 0, 1, 2, 3, with a valid checksum.
     {
       std::string bad = full;
-      const double k = 2.0;
+      const double k = 4.0;
       std::memcpy(bad.data() + head + n - sizeof k, &k, sizeof k);
       const std::uint64_t sum = pradis::detail::fnv1a(bad.data() + head, n);
       std::memcpy(bad.data() + head + n, &sum, sizeof sum);
@@ -289,7 +289,7 @@ TEST_SUITE("core/checkpoint") {
       std::string bad = full;
       const std::uint32_t v = checkpoint_version + 1;
       std::memcpy(bad.data() + 8, &v, sizeof v);
-      refused(bad, "checkpoint version 5 cannot be read; this pradis reads version 4");
+      refused(bad, "checkpoint version 6 cannot be read; this pradis reads version 5");
       refused("PRADCK01" + full.substr(8), "checkpoint version 1");
     }
     // Bytes after the checksum are not read (a session appends its record there).

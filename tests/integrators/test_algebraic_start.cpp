@@ -192,7 +192,7 @@ TEST_SUITE("integrators/algebraic start") {
     // Before: code 141 at t = 1e-11 in both drivers (the node moved by 0.025 m in the first step).
     // The massless node costs no accuracy: the mass on one spring of the series stiffness has the same
     // errors. Measured (largest |x - exact| over 20 outputs to t = 2 s, DRLTX = DABSX = 1e-6 / 1e-8):
-    // NEWMARK 5.59e-6 / 5.18e-8 m (single spring 5.57e-6 / 6.75e-8), BDF 8.23e-7 / 1.76e-7 m (single
+    // NEWMARK 5.59e-6 / 5.18e-8 m (single spring 5.57e-6 / 6.75e-8), BDF 1.59e-6 / 2.40e-7 m (single
     // spring 1.59e-6 / 2.11e-7; with the default Newton tolerances BDF's error falls less than 10x here).
     const double n6 = ast_series<ast_newmark>(1e-6), n8 = ast_series<ast_newmark>(1e-8);
     const double b6 = ast_series<ast_bdf>(1e-6), b8 = ast_series<ast_bdf>(1e-8);
@@ -206,6 +206,24 @@ TEST_SUITE("integrators/algebraic start") {
     CHECK(n8 < n6 / 10);
     CHECK(b6 < 2e-5);
     CHECK(b8 < 1e-6);
+    MESSAGE("series springs |x - exact|: NEWMARK ", n6, " / ", n8, " (one spring ", sn6, " / ", sn8, "), BDF ", b6,
+            " / ", b8, " (one spring ", sb6, " / ", sb8, ")");
+  }
+
+  TEST_CASE("BDF: the velocity of a massless node is left out of its norms, so tight tolerances run") {
+    // The node's position is put on its equation to round-off d (about eps |n| = 5e-18 m); its velocity, the
+    // position's BDF derivative, then carries about d / h, 5e-7 m/s at the first step (h ~ 1e-11 s), against a
+    // tolerance of 1e-10 m/s. Before, BDF ended with code 140 at t = 0 at DRLTX = DABSX = 1e-9 and 1e-10;
+    // no equation reads that velocity (driver_core::unused_velocity). Measured (largest |x - exact| over the
+    // outputs): 3.2e-8 / 5.0e-9 at 1e-9 / 1e-10, the same mass on one spring of the series stiffness
+    // 3.2e-8 / 3.8e-9: the node costs no accuracy here either.
+    const double b9 = ast_series<ast_bdf>(1e-9), b10 = ast_series<ast_bdf>(1e-10);
+    const double sb9 = ast_series<ast_bdf>(1e-9, true), sb10 = ast_series<ast_bdf>(1e-10, true);
+    MESSAGE("BDF |x - exact| at 1e-9 / 1e-10: ", b9, " / ", b10, " (one spring ", sb9, " / ", sb10, ")");
+    CHECK(b9 < 1.5 * sb9 + 1e-12);
+    CHECK(b10 < 1.5 * sb10 + 1e-12);
+    CHECK(b9 < 1e-7);
+    CHECK(b10 < b9 / 3);
   }
 
   TEST_CASE("a static model (springs and a constant force, no mass or viscosity) starts at its equilibrium") {

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The checkpoint format of pradis::simulation (version 4) and the model
+/// The checkpoint format of pradis::simulation (version 5) and the model
 /// fingerprint it carries.
 ///
 /// Layout: the 8-byte magic "PRADCKPT", the format version (uint32), the
@@ -38,7 +38,9 @@ namespace pradis {
 /// Version 3 added the DOF classes of the zero step (checkpoint_data::dof_classes); a version-2 checkpoint is refused
 /// (a restored run needs them to leave index-3 multipliers out of its error tests). Version 4 has the same fields;
 /// its model fingerprint also covers the model's nodes (node kinds), so a version-3 checkpoint is refused as well.
-inline constexpr std::uint32_t checkpoint_version = 4;
+/// Version 5 has the same fields and a fourth DOF class, the velocity-level multipliers (a source current; class 1
+/// before), whose velocity the BDF driver keeps in its norms; a version-4 checkpoint is refused.
+inline constexpr std::uint32_t checkpoint_version = 5;
 
 namespace detail {
 
@@ -201,11 +203,12 @@ struct checkpoint_data {
   Eigen::VectorXd a_previous;  ///< accelerations at the start of the last step (error predictor)
   std::vector<double> work, old_state, new_state;  ///< the model's pools
   /// Per DOF, its class found at the zero step: 3 the multiplier of an index-3 constraint, 1 an equation with neither
-  /// mass nor viscosity, 0 any other (driver_core::dof_classes).
+  /// mass nor viscosity, 2 such an equation whose unknown's value v enters others (a source current), 0 any other
+  /// (driver_core::dof_classes).
   std::vector<double> dof_classes;
 };
 
-/// Writes a checkpoint (version 4) of a model with the given fingerprint.
+/// Writes a checkpoint (version 5) of a model with the given fingerprint.
 inline void write_checkpoint(std::ostream& os, std::uint64_t fingerprint, const checkpoint_data& c) {
   detail::checkpoint_writer w;
   w.put_int(static_cast<std::int64_t>(fingerprint));
@@ -283,7 +286,7 @@ inline checkpoint_data read_checkpoint(std::istream& is, std::uint64_t fingerpri
   c.dof_classes.resize(static_cast<std::size_t>(dofs));
   r.get_vector(c.dof_classes, "DOF classes");
   for (const double k : c.dof_classes)
-    if (k != 0 && k != 1 && k != 3) damaged("a DOF class is out of range");
+    if (k != 0 && k != 1 && k != 2 && k != 3) damaged("a DOF class is out of range");
   if (!r.at_end()) damaged("its payload has unread fields");
   return c;
 }

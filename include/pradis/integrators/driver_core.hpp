@@ -31,6 +31,9 @@ namespace pradis::detail {
 
 /// The DOF classes of driver_core::dof_classes() (a checkpoint field).
 inline constexpr double dof_class_massless = 1;
+/// A velocity-level multiplier (kinds 4 and 5 of initial_derivatives, a source current): massless, but its
+/// value v enters other equations.
+inline constexpr double dof_class_velocity_multiplier = 2;
 inline constexpr double dof_class_index3 = 3;
 
 /// The state and element-level phases shared by the drivers (see the file comment).
@@ -163,13 +166,16 @@ class driver_core {
     for (int i = 0; i < static_cast<int>(kind.size()); ++i) {
       const auto d = static_cast<std::size_t>(asm_.dof_of(i));
       if (kind[static_cast<std::size_t>(i)] == 3) classes[d] = dof_class_index3;
-      if ((kind[static_cast<std::size_t>(i)] == 0 || kind[static_cast<std::size_t>(i)] >= 4) && !hidden[d])
-        classes[d] = dof_class_massless;  // kinds 4, 5: a velocity-level multiplier (a source current)
+      if (kind[static_cast<std::size_t>(i)] == 0 && !hidden[d]) classes[d] = dof_class_massless;
+      if (kind[static_cast<std::size_t>(i)] >= 4 && !hidden[d])
+        classes[d] = dof_class_velocity_multiplier;  // kinds 4, 5: a source current
     }
     set_dof_classes(classes);
   }
   /// The DOF classes of the zero step, per DOF: dof_class_index3 (the multiplier of an index-3 constraint),
-  /// dof_class_massless (an equation with neither mass nor viscosity; a node's hidden DOF not counted) or 0.
+  /// dof_class_massless (an equation with neither mass nor viscosity; a node's hidden DOF not counted),
+  /// dof_class_velocity_multiplier (such an equation whose unknown's value v enters others: a source current)
+  /// or 0.
   /// Checkpoints keep them, so that a restored run leaves the same DOFs out of its error tests and warns as the
   /// first run.
   std::vector<double> dof_classes() const {
@@ -177,7 +183,7 @@ class driver_core {
     for (std::size_t d = 0; d < c.size() && d < index3_.size(); ++d)
       if (index3_[d]) c[d] = dof_class_index3;
     for (std::size_t d = 0; d < c.size() && d < massless_.size(); ++d)
-      if (massless_[d]) c[d] = dof_class_massless;
+      if (massless_[d]) c[d] = velocity_multiplier_[d] ? dof_class_velocity_multiplier : dof_class_massless;
     return c;
   }
   /// Per DOF: left out of the local error tests: the index-3 multipliers (index3_) and the
@@ -189,28 +195,42 @@ class driver_core {
   /// a second spring, started with the node on its equation (algebraic_start.hpp), had NEWMARK's estimate of
   /// the node's round-off, about eps |u| / h, hold the first steps near SMIN until code 141 at t = 2.7e-9.
   const std::vector<char>& constrained() const noexcept { return constrained_; }
+  /// Per DOF: massless, neither a velocity-level multiplier nor a column of an index-3 constraint's row, so
+  /// that no equation reads its velocity (its own equation has no mass or viscosity on it at the zero step). BDF leaves these velocities out of its
+  /// Newton and error norms: Newton puts the position on its equation to round-off d, about eps |u|, and the
+  /// velocity, the position's BDF derivative, then carries about c d = d / h, which at the first steps
+  /// (h ~ 1e-11 s) outweighed any tolerance (bdf_simulation::set_weights).
+  const std::vector<char>& unused_velocity() const noexcept { return unused_velocity_; }
   /// Sets index3_, the massless DOFs and their count from classes as dof_classes() gives them.
   void set_dof_classes(const std::vector<double>& classes) {
     index3_.assign(classes.size(), 0);
     massless_.assign(classes.size(), 0);
+    velocity_multiplier_.assign(classes.size(), 0);
     massless_count_ = 0;
     massless_dof_ = -1;
     error_skip_ = slaved_dofs(m_);
     error_skip_.resize(classes.size(), 0);
     for (std::size_t d = 0; d < classes.size(); ++d) {
       if (classes[d] == dof_class_index3) index3_[d] = error_skip_[d] = 1;
-      if (classes[d] == dof_class_massless) {
+      if (classes[d] == dof_class_massless || classes[d] == dof_class_velocity_multiplier) {
         massless_[d] = 1;
+        velocity_multiplier_[d] = classes[d] == dof_class_velocity_multiplier;
         if (massless_count_++ == 0) massless_dof_ = static_cast<int>(d);
       }
     }
     constrained_ = massless_;
+    unused_velocity_ = massless_;
+    for (std::size_t d = 0; d < classes.size(); ++d)
+      if (velocity_multiplier_[d]) unused_velocity_[d] = 0;
     const auto& pat = asm_.pattern();
     for (std::size_t d = 0; d < classes.size(); ++d) {
       const int r = index3_[d] ? asm_.equation_of(static_cast<int>(d)) : -1;
       if (r < 0) continue;
-      for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q)
-        constrained_[static_cast<std::size_t>(asm_.dof_of(pat.col[static_cast<std::size_t>(q)]))] = 1;
+      for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
+        const auto c = static_cast<std::size_t>(asm_.dof_of(pat.col[static_cast<std::size_t>(q)]));
+        constrained_[c] = 1;
+        unused_velocity_[c] = 0;
+      }
     }
   }
   /// The end of the zero step: the pseudo-acceleration starts at the consistent
@@ -263,6 +283,8 @@ class driver_core {
   std::vector<char> index3_;
   std::vector<char> error_skip_;  // index3_ and the slaved DOFs (error_skip())
   std::vector<char> constrained_;  // the massless DOFs and the columns of the index-3 constraints' rows (constrained())
+  std::vector<char> unused_velocity_;  // unused_velocity()
+  std::vector<char> velocity_multiplier_;  // the massless DOFs of class dof_class_velocity_multiplier
   /// Equations with neither mass nor viscosity (algebraic, found at the zero step; index-3 multipliers and the
   /// nodes' hidden DOFs, such as the rotational q4, not counted), and the first one's DOF (-1 if none): the
   /// undamped-scheme warning of simulation::run names it.

@@ -302,10 +302,12 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       const auto d = asm_.dof_of(i);
       const double s = m_.scales()[static_cast<std::size_t>(d)].potential;
       const auto& sk = this->error_skip();
+      const auto& uv = this->unused_velocity();
       const bool skip = static_cast<std::size_t>(d) < sk.size() && sk[static_cast<std::size_t>(d)];
+      const bool skip_v = skip || (static_cast<std::size_t>(d) < uv.size() && uv[static_cast<std::size_t>(d)]);
       const bool index2 = static_cast<std::size_t>(i) < index2_.size() && index2_[static_cast<std::size_t>(i)];
       w_(i) = skip ? 0.0 : 1 / (opt_.drltx * std::abs(s_.u(d)) + dabsx * s);
-      w_(ne + i) = skip ? 0.0 : (index2 ? hv : 1.0) / (opt_.drltx * std::abs(s_.v(d)) + dabsx * s);
+      w_(ne + i) = skip_v ? 0.0 : (index2 ? hv : 1.0) / (opt_.drltx * std::abs(s_.v(d)) + dabsx * s);
     }
     rates_.weights(s_, ne, opt_.drltx, dabsx, m_.scales(), index2_, hv, w_);
   }
