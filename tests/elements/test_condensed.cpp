@@ -184,6 +184,12 @@ TEST_SUITE("elements/condensed") {
           std::string::npos);
     CHECK(help_lines(series::help.parameters) == 2);
     CHECK(std::string(series::help.parameters).find("part 2 'SPRING' (right spring)") != std::string::npos);
+    // Each condensed element's help title is its spec's.
+    CHECK(std::string_view(soft_series::help.title) == soft_spec::title);
+    CHECK(std::string_view(pulled_spring::help.title) == pulled_spec::title);
+    CHECK(std::string_view(square_end::help.title) == square_spec::title);
+    CHECK(std::string_view(mass_in_middle::help.title) == bad_spec::title);
+    CHECK(std::string_view(straight_pair::help.title) == line_spec::title);
   }
 
   TEST_CASE("two springs in series condense to one spring of stiffness k1 k2 / (k1 + k2)") {
