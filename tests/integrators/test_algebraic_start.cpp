@@ -185,6 +185,23 @@ double ast_series(double tol, bool single = false) {
   return worst;
 }
 
+/// The DOF classes (checkpoint_data::dof_classes) of the series springs' mass and node after a BDF run to 0.1 s
+/// at DRLTX = DABSX = 1e-6.
+std::vector<double> ast_series_classes() {
+  using M = model<point_mass, linear_spring, initial_displacement>;
+  M md;
+  const dof x = md.add_dof("x"), n = md.add_dof("n");
+  md.add<point_mass>("m", {1.0}, x);
+  md.add<linear_spring>("k1", {100.0}, x, n);
+  md.add<linear_spring>("k2", {300.0}, n, md.ground());
+  md.add<initial_displacement>("x0", {0.1}, x);
+  bdf_simulation<M> sim(md);
+  sim.run(ast_controlled(0.1, 1e-6));
+  CHECK(sim.time() == doctest::Approx(0.1).epsilon(1e-12));
+  const auto c = sim.checkpoint().dof_classes;
+  return {c[static_cast<std::size_t>(x.index)], c[static_cast<std::size_t>(n.index)]};
+}
+
 }  // namespace
 
 TEST_SUITE("integrators/algebraic start") {
@@ -224,6 +241,35 @@ TEST_SUITE("integrators/algebraic start") {
     CHECK(b10 < 1.5 * sb10 + 1e-12);
     CHECK(b9 < 1e-7);
     CHECK(b10 < b9 / 3);
+  }
+
+  TEST_CASE("BDF keeps the velocity of a massless DOF that an equation reads (its DOF class)") {
+    // Classes (driver_core.hpp): 0 other, 1 massless, 2 massless with a velocity that some equation reads (its
+    // column of M or C nonzero at the zero step), which BDF keeps in its norms.
+    const std::vector<double> springs = ast_series_classes();
+    CHECK(springs[0] == 0.0);  // the mass
+    CHECK(springs[1] == 1.0);  // the node: no equation reads its velocity
+    // A floating source of V = 5 V across an inductor of L = 0.1 H: the node's row has only the inductor's K and
+    // the source current's C entry, but the source's row reads the node's potential v (its velocity); the
+    // current, the source's internal DOF, is read by the node's row. The current ramps as i = V t / L, which
+    // BDF's fixed steps of 1 ms integrate exactly: 5 A at t = 0.1 s.
+    using M = model<floating_voltage_dc, inductor>;
+    M md;
+    const dof a = md.add_dof("a");
+    md.add<floating_voltage_dc>("V", {5.0}, a, md.ground());
+    const auto ind = md.add<inductor>("L", {0.1, 0.0}, a, md.ground());
+    bdf_simulation<M> sim(md);
+    run_options o;
+    o.end = 0.1;
+    o.out = 0.01;
+    o.smax = o.smin = 1e-3;
+    sim.run(o);
+    CHECK(md.work(ind)[0] == doctest::Approx(5.0).epsilon(1e-12));
+    CHECK(sim.v(a) == doctest::Approx(5.0).epsilon(1e-12));
+    const auto c = sim.checkpoint().dof_classes;
+    REQUIRE(c.size() == 3);  // ground, a, the source current
+    CHECK(c[static_cast<std::size_t>(a.index)] == 2.0);
+    CHECK(std::count(c.begin(), c.end(), 2.0) == 2);  // a and the current
   }
 
   TEST_CASE("a static model (springs and a constant force, no mass or viscosity) starts at its equilibrium") {

@@ -38,8 +38,9 @@ namespace pradis {
 /// Version 3 added the DOF classes of the zero step (checkpoint_data::dof_classes); a version-2 checkpoint is refused
 /// (a restored run needs them to leave index-3 multipliers out of its error tests). Version 4 has the same fields;
 /// its model fingerprint also covers the model's nodes (node kinds), so a version-3 checkpoint is refused as well.
-/// Version 5 has the same fields and a fourth DOF class, the velocity-level multipliers (a source current; class 1
-/// before), whose velocity the BDF driver keeps in its norms; a version-4 checkpoint is refused.
+/// Version 5 has the same fields and a fourth DOF class, the massless DOFs whose velocity some equation reads (a
+/// source current; class 1 before), whose velocity the BDF driver keeps in its norms; a version-4 checkpoint is
+/// refused.
 inline constexpr std::uint32_t checkpoint_version = 5;
 
 namespace detail {
@@ -203,7 +204,7 @@ struct checkpoint_data {
   Eigen::VectorXd a_previous;  ///< accelerations at the start of the last step (error predictor)
   std::vector<double> work, old_state, new_state;  ///< the model's pools
   /// Per DOF, its class found at the zero step: 3 the multiplier of an index-3 constraint, 1 an equation with neither
-  /// mass nor viscosity, 2 such an equation whose unknown's value v enters others (a source current), 0 any other
+  /// mass nor viscosity, 2 such an equation whose DOF's velocity some equation reads (a source current), 0 any other
   /// (driver_core::dof_classes).
   std::vector<double> dof_classes;
 };
