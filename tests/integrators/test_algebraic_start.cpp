@@ -15,6 +15,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -185,16 +186,24 @@ double ast_series(double tol, bool single = false) {
   return worst;
 }
 
+/// Adds the series springs displaced by 0.1 m to md: the mass of 1 kg at x on 100 N/m to the massless node n,
+/// 300 N/m from n to the ground. Returns {x, n}.
+template <class M>
+std::array<dof, 2> ast_displaced_series(M& md) {
+  const dof x = md.add_dof("x"), n = md.add_dof("n");
+  md.template add<point_mass>("m", {1.0}, x);
+  md.template add<linear_spring>("k1", {100.0}, x, n);
+  md.template add<linear_spring>("k2", {300.0}, n, md.ground());
+  md.template add<initial_displacement>("x0", {0.1}, x);
+  return {x, n};
+}
+
 /// The DOF classes (checkpoint_data::dof_classes) of the series springs' mass and node after a BDF run to 0.1 s
 /// at DRLTX = DABSX = 1e-6.
 std::vector<double> ast_series_classes() {
   using M = model<point_mass, linear_spring, initial_displacement>;
   M md;
-  const dof x = md.add_dof("x"), n = md.add_dof("n");
-  md.add<point_mass>("m", {1.0}, x);
-  md.add<linear_spring>("k1", {100.0}, x, n);
-  md.add<linear_spring>("k2", {300.0}, n, md.ground());
-  md.add<initial_displacement>("x0", {0.1}, x);
+  const auto [x, n] = ast_displaced_series(md);
   bdf_simulation<M> sim(md);
   sim.run(ast_controlled(0.1, 1e-6));
   CHECK(sim.time() == doctest::Approx(0.1).epsilon(1e-12));
@@ -460,11 +469,7 @@ TEST_SUITE("integrators/algebraic start") {
     // X0 on the massless node: the node's equation decides its position at the zero step (lever rule).
     using M = model<point_mass, linear_spring, initial_displacement>;
     M md;
-    const dof x = md.add_dof("x"), n = md.add_dof("n");
-    md.add<point_mass>("m", {1.0}, x);
-    md.add<linear_spring>("k1", {100.0}, x, n);
-    md.add<linear_spring>("k2", {300.0}, n, md.ground());
-    md.add<initial_displacement>("x0", {0.1}, x);
+    const dof n = ast_displaced_series(md)[1];
     md.add<initial_displacement>("n0", {0.5}, n);
     const run_outcome r = observed_run<simulation<M>>(md, {n}, ast_controlled(0.1, 1e-6));
     CAPTURE(r.log);
