@@ -179,10 +179,10 @@ class driver_core {
       const auto d = static_cast<std::size_t>(asm_.dof_of(i));
       if (kind[static_cast<std::size_t>(i)] == 3) classes[d] = dof_class_index3;
       const char k = kind[static_cast<std::size_t>(i)];
-      if ((k == 0 || k >= 4) && !hidden[d])  // kinds 4, 5: a source current, whose value v others read
-        classes[d] = k >= 4 || node_dof[d] || (static_cast<std::size_t>(i) < read.size() && read[static_cast<std::size_t>(i)])
-                         ? dof_class_massless_velocity_read
-                         : dof_class_massless;
+      if ((k == 0 || k >= 4) && !hidden[d]) {  // kinds 4, 5: a source current, whose value v others read
+        const bool read_here = static_cast<std::size_t>(i) < read.size() && read[static_cast<std::size_t>(i)];
+        classes[d] = k >= 4 || node_dof[d] || read_here ? dof_class_massless_velocity_read : dof_class_massless;
+      }
     }
     set_dof_classes(classes);
   }
@@ -211,10 +211,10 @@ class driver_core {
   const std::vector<char>& constrained() const noexcept { return constrained_; }
   /// Per DOF: massless, no equation reads its velocity (dof_class_massless, not dof_class_massless_velocity_read:
   /// its column of M and C is zero at the zero step, and it is no node's DOF), and not a column of an index-3
-  /// constraint's row. BDF leaves these velocities out of its
-  /// Newton and error norms: Newton puts the position on its equation to round-off d, about eps |u|, and the
-  /// velocity, the position's BDF derivative, then carries about c d = d / h, which at the first steps
-  /// (h ~ 1e-11 s) outweighed any tolerance (bdf_simulation::set_weights).
+  /// constraint's row. BDF leaves these velocities out of its Newton and error norms: Newton puts the position on
+  /// its equation to round-off d, about eps |u|, and the velocity, the position's BDF derivative, then carries
+  /// about c d = d / h, which at the first steps (h ~ 1e-11 s) outweighed any tolerance
+  /// (bdf_simulation::set_weights).
   const std::vector<char>& unused_velocity() const noexcept { return unused_velocity_; }
   /// Sets index3_, the massless DOFs and their count from classes as dof_classes() gives them.
   void set_dof_classes(const std::vector<double>& classes) {
