@@ -14,10 +14,12 @@
 //     ODE at the step h follows the recurrence
 //       v_{n+1} (1 + h / (2 tau)) = v_n (1 - h / (2 tau)) - h (V_n + V_{n+1}) / (2 tau),
 //     which the run must reproduce to round-off; its distance from the exact solution is the
-//     rule's global error, O(h^2) (Hughes, The Finite Element Method, section 9.3; bounded below).
-// The floating sources' currents are algebraic unknowns that the zero step does not make
-// consistent (docs/domains-electric-pneumatic.md, "floating source"): their circuits are checked
-// from the first step on.
+//     rule's global error, O(h^2) (Hughes, The Finite Element Method, section 9.3; bounded below);
+//   - VDC2 across an inductor (L = 0.1 H, i0 = 0.2 A): v10 = V from t = 0, i = i0 + V t / L (the inductor
+//     law v = L di/dt), linear in t, so the trapezoidal rule is exact; the zero step fixes v10 and
+//     the source current (integrators/velocity_constraints.hpp, kind 6).
+// The zero step makes the floating sources' currents and the potentials they fix consistent
+// (docs/domains-electric-pneumatic.md, "floating source"): every circuit is checked from t = 0.
 // Tolerances: every equation is linear and Newton's tests are at 1e-12, so Newton ends with a
 // residual at round-off; the states are sums of at most 400 steps of terms of order 10, so
 // 1e-11 V (about 400 * 10 * 2 eps) bounds the accumulated round-off of v3 and v9.
@@ -53,10 +55,10 @@ TEST_SUITE("lang/source bench") {
     auto c = [&](const char* label) { return lang_test::column(t, label); };
     const std::size_t v1 = c("v1"), v2 = c("v2"), v3 = c("v3"), v4 = c("v4"), v5 = c("v5"), v6 = c("v6"), v7 = c("v7"),
                       v8 = c("v8"), v9 = c("v9"), i1 = c("I1"), i2 = c("I2"), i3 = c("I3"), i4 = c("I4"), i6 = c("I6"),
-                      i8 = c("I8");
+                      i8 = c("I8"), v10 = c("v10"), i10 = c("I10"), il10 = c("IL10");
     REQUIRE(t.rows() == 41);  // t = 0 and every 1 ms to 40 ms
     const double C = 1e-3, tau = 100 * C, h = 1e-4, ramp = 100;
-    double e_res = 0, e_cap = 0, e_float = 0, e_disc = 0, e_exact = 0;
+    double e_res = 0, e_cap = 0, e_float = 0, e_disc = 0, e_exact = 0, e_coil = 0;
     double vd = 0;  // the trapezoidal recurrence for v9, advanced in steps of h
     double td = 0;
     for (std::size_t r = 0; r < t.rows(); ++r) {
@@ -73,7 +75,8 @@ TEST_SUITE("lang/source bench") {
         vd = (vd * (1 - k) - k * ramp * (td + (td + h))) / (1 + k);
         td += h;
       }
-      if (r == 0) continue;  // the floating sources from the first step on (the file comment)
+      e_coil = std::max({e_coil, std::abs(t.at(r, v10) - 3.0), std::abs(t.at(r, il10) - (0.2 + 30 * time)),
+                         std::abs(t.at(r, i10) - (0.2 + 30 * time))});
       const double vs = 1 + 2 * std::sin(2 * srcb_pi * 50 * time);
       e_float = std::max({e_float, std::abs(t.at(r, v4) - 1.0), std::abs(t.at(r, v5) + 2.0),
                           std::abs(t.at(r, i4) - 0.01), std::abs(t.at(r, v6) - vs / 2),
@@ -84,11 +87,13 @@ TEST_SUITE("lang/source bench") {
       e_exact = std::max(e_exact, std::abs(t.at(r, v9) + ramp * (time - tau * (1 - std::exp(-time / tau)))));
     }
     MESSAGE("resistive nodes ", e_res, " V/A; capacitor under the pulse ", e_cap, "; floating sources ", e_float,
-            "; v9 against the trapezoidal recurrence ", e_disc, " V, against the exact solution ", e_exact, " V");
+            "; v9 against the trapezoidal recurrence ", e_disc, " V, against the exact solution ", e_exact,
+            " V; source across the inductor ", e_coil);
     CHECK(e_res <= 1e-12);
     CHECK(e_cap <= 1e-11);
     CHECK(e_float <= 1e-11);
     CHECK(e_disc <= 1e-11);
+    CHECK(e_coil <= 1e-11);
     // The trapezoidal rule's global error on v9' = -(v9 + V) / tau: at most T h^2 / 12 max|v9'''|,
     // v9''' = -(100 / tau^2) exp(-t / tau) in magnitude at most 1e4 V/s^3: 0.04 * 1e-8 / 12 * 1e4 = 3.3e-7 V.
     CHECK(e_exact <= 3.4e-7);

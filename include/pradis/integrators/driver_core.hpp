@@ -33,7 +33,7 @@ namespace pradis::detail {
 inline constexpr double dof_class_massless = 1;
 /// Massless, but some equation reads its velocity: its column of M or C is nonzero at the zero step (a
 /// velocity-level multiplier, kinds 4 and 5 of initial_derivatives, such as a source current; a node whose
-/// potential a floating source fixes), or it is a node's DOF (a massless rotational node's q1..q3, which its norm
+/// potential a floating source fixes, kind 6 if it has a stiffness diagonal), or it is a node's DOF (a massless rotational node's q1..q3, which its norm
 /// equation reads).
 inline constexpr double dof_class_massless_velocity_read = 2;
 inline constexpr double dof_class_index3 = 3;
@@ -179,7 +179,8 @@ class driver_core {
       const auto d = static_cast<std::size_t>(asm_.dof_of(i));
       if (kind[static_cast<std::size_t>(i)] == 3) classes[d] = dof_class_index3;
       const char k = kind[static_cast<std::size_t>(i)];
-      if ((k == 0 || k >= 4) && !hidden[d]) {  // kinds 4, 5: a source current, whose value v others read
+      if ((k == 0 || k >= 4) && !hidden[d]) {  // kinds 4, 5: a source current, whose value v others read; 6: a
+        // node whose velocity a source fixes
         const bool read_here = static_cast<std::size_t>(i) < read.size() && read[static_cast<std::size_t>(i)];
         classes[d] = k >= 4 || node_dof[d] || read_here ? dof_class_massless_velocity_read : dof_class_massless;
       }

@@ -172,7 +172,8 @@ bool mark_index3_multipliers(const Pattern& pat, const std::vector<double>& mval
 /// (the currents of floating voltage sources; velocity_constraints.hpp).
 /// `evaluate(c, want_jacobian)` evaluates the model at s into `as`. Returns
 /// the kind of each equation (1 inertial, 2 viscous, 3 index-3 multiplier,
-/// 4 and 5 velocity-level multipliers (velocity_constraints.hpp), 0 algebraic), or an empty
+/// 4 and 5 velocity-level multipliers, 6 a stiffness DOF whose velocity one fixes (velocity_constraints.hpp),
+/// 0 algebraic), or an empty
 /// vector when no consistent derivatives could be found (a warning is logged
 /// and the free DOFs start with zero accelerations). With `velocity_read`, per equation
 /// whether its DOF's column of M or C holds a nonzero entry at the initial state (some
@@ -218,8 +219,8 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
     // derivative, G a + (dG/dt) v = 0, so that the initial multipliers and
     // accelerations are consistent with the constraints.
     // Velocity-level constraints (velocity_constraints.hpp): kind 4 is solved with the
-    // viscous DOFs; for kind 5 the potentials move onto the constraint first and the row
-    // becomes its first time derivative.
+    // viscous DOFs and the stiffness DOFs whose velocities it fixes (kind 6); for kind 5 the
+    // potentials move onto the constraint first and the row becomes its first time derivative.
     std::vector<double> kvals;
     std::vector<double> rhs_plain = rhs;
     // The flows, M, C and K again, at a state the start has moved.
@@ -286,6 +287,7 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
           std::replace(kind.begin(), kind.end(), char{3}, char{0});
           std::replace(kind.begin(), kind.end(), char{4}, char{0});
           std::replace(kind.begin(), kind.end(), char{5}, char{0});
+          std::replace(kind.begin(), kind.end(), char{6}, char{0});
           rhs0 = rhs_plain;
           continue;
         }

@@ -56,8 +56,8 @@ void constraint_accelerations(Assembler& as, global_state& s, const std::vector<
 }
 
 /// The zero step's scaled residual: the largest |F_i| / (nominal flow of DOF i, core/domain.hpp)
-/// over the equations whose unknown it solves for (inertial, viscous or a velocity-level multiplier,
-/// `kind` 1, 2 or 4), without
+/// over the equations whose unknown it solves for (inertial, viscous, a velocity-level multiplier or
+/// a stiffness DOF whose velocity a source fixes, `kind` 1, 2, 4 or 6), without
 /// the nodes' hidden and slaved DOFs (their rows are replaced). NaN if a residual is NaN.
 template <class Model, class Assembler>
 double start_residual(const Model& m, const Assembler& as, const std::vector<char>& kind) {
@@ -66,7 +66,7 @@ double start_residual(const Model& m, const Assembler& as, const std::vector<cha
   for (int i = 0; i < as.equations(); ++i) {
     const auto d = static_cast<std::size_t>(as.dof_of(i));
     const char k = kind[static_cast<std::size_t>(i)];
-    if ((k != 1 && k != 2 && k != 4) || hidden[d]) continue;
+    if ((k != 1 && k != 2 && k != 4 && k != 6) || hidden[d]) continue;
     const double x = std::abs(as.residual()(static_cast<Eigen::Index>(d))) / m.scales()[d].flow;
     if (!(x <= r)) r = x;
   }
@@ -74,8 +74,8 @@ double start_residual(const Model& m, const Assembler& as, const std::vector<cha
 }
 
 /// The zero step's matrix (initial_derivatives) in the pattern's order: M in the columns of
-/// inertial unknowns, C in those of viscous ones and multipliers (kinds 2, 3, 4), the identity on algebraic
-/// DOFs; an index-3 constraint row has K in the inertial columns (its second derivative), a
+/// inertial unknowns, C in those of viscous ones, multipliers and fixed stiffness DOFs (kinds 2, 3, 4, 6),
+/// the identity on algebraic DOFs; an index-3 constraint row has K in the inertial columns (its second derivative), a
 /// kind-5 row (velocity_constraints.hpp) C there (its first derivative).
 inline void start_matrix(const linalg::sparsity_pattern& pat, const std::vector<char>& kind, const std::vector<double>& mvals,
                          const std::vector<double>& cvals, const std::vector<double>& kvals, std::vector<double>& j) {
@@ -92,7 +92,7 @@ inline void start_matrix(const linalg::sparsity_pattern& pat, const std::vector<
 }
 
 /// Adds f z to the zero step's unknowns: accelerations of inertial equations, velocities of
-/// viscous ones and multipliers (`kind` 1, 2, 3, 4; z in equation order).
+/// viscous ones, multipliers and fixed stiffness DOFs (`kind` 1, 2-6; z in equation order).
 template <class Assembler>
 void add_start_correction(const Assembler& as, const std::vector<char>& kind, const std::vector<double>& z, double f,
                           global_state& s) {
@@ -298,7 +298,7 @@ void velocity_constraint_rates(const Model& m, Assembler& as, global_state& s, c
 /// The rates of the viscous unknowns at the zero step: a viscous DOF's velocity (a pressure
 /// at a node without capacitance, the series point of a spring and a damper) follows from its
 /// equation F_i = 0, so its rate a_i follows from dF_i/dt = 0 along the motion. For the
-/// viscous equations and velocity-level multipliers (kinds 2 and 4, not a node's hidden or
+/// viscous equations, velocity-level multipliers and the DOFs they fix (kinds 2, 4 and 6, not a node's hidden or
 /// slaved DOF) whose rows hold no inertia entry, dF_i/dt comes from rates_along_motion and
 /// C_vv da_v = -dF_v/dt is solved for their rates. Without this they started at 0 and
 /// the error test of the first steps saw the jump (a node between a pump and a check valve
@@ -317,7 +317,7 @@ void viscous_rates(Model& m, Assembler& as, Solver& solver, global_state& s, run
   bool any = false;
   for (int i = 0; i < ne; ++i) {
     const char k = kind[static_cast<std::size_t>(i)];
-    if ((k != 2 && k != 4) || hidden[static_cast<std::size_t>(as.dof_of(i))]) continue;
+    if ((k != 2 && k != 4 && k != 6) || hidden[static_cast<std::size_t>(as.dof_of(i))]) continue;
     bool inertia = false;
     for (int q = pat.row_ptr[static_cast<std::size_t>(i)]; q < pat.row_ptr[static_cast<std::size_t>(i) + 1]; ++q)
       inertia = inertia || mvals[static_cast<std::size_t>(q)] != 0.0;

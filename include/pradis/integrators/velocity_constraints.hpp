@@ -21,8 +21,16 @@
 ///   is replaced by its time derivative, G a + dF/dt = 0 (start_newton.hpp,
 ///   velocity_constraint_rates), solved with the accelerations for the
 ///   multiplier's value.
-/// A row that reaches an unknown of another kind (an algebraic DOF with a diagonal
-/// stiffness, a multiplier) stays algebraic (kind 0) and is met at the first step.
+/// - kind 6, a DOF with a stiffness diagonal and no inertia in its row whose velocity a
+///   kind-4 row fixes and whose row the row's unknown enters through C (a floating voltage
+///   source across an inductor: the node's flux linkage u is a state, the inductor's current
+///   follows from it, and the source fixes the node's voltage v). Its displacement stays as
+///   the initial conditions set it; its unknown is its velocity v, solved with the kind-4
+///   rows, and its row is solved for their currents. Before, such a row stayed algebraic
+///   and the potential jumped at the first step, where a run under error control failed
+///   with code 141 at SMIN.
+/// A row that reaches an unknown of another kind (a multiplier, an algebraic DOF whose
+/// row no source current enters) stays algebraic (kind 0) and is met at the first step.
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -38,15 +46,18 @@
 
 namespace pradis::detail {
 
-/// Marks kinds 4 and 5 among the algebraic equations (kind 0, see the file comment):
+/// Marks kinds 4, 5 and 6 among the algebraic equations (kind 0, see the file comment):
 /// the candidates are the equations whose unknown enters another row through C and
 /// whose own row has no inertia or stiffness entry and a C entry on another unknown.
+/// A stiffness DOF (kind 0, a stiffness diagonal, no inertia entry in its row) is fixed
+/// by a candidate whose row reaches it through C and whose unknown enters its row through C.
 /// A candidate whose row reaches through C an unknown that is neither inertial, nor
-/// viscous, nor a candidate is dropped, until none changes; then a candidate whose row
-/// reaches only inertial unknowns is kind 5, the others kind 4 (their rows reach some
-/// viscous unknown or candidate, which the row then fixes, the inertial potentials it
-/// reaches staying as the initial conditions set them). `kvals` may be empty (no
-/// stiffness evaluated). Returns whether any kind 5 was marked.
+/// viscous, nor a candidate, nor a fixed stiffness DOF is dropped, until none changes; then
+/// a candidate whose row reaches only inertial unknowns is kind 5, the others kind 4 (their
+/// rows reach some viscous unknown, candidate or fixed DOF, which the row then fixes, the
+/// inertial potentials it reaches staying as the initial conditions set them), and the
+/// fixed stiffness DOFs kind 6. `kvals` may be empty (no stiffness evaluated; then no
+/// kind 6). Returns whether any kind 5 was marked.
 template <class Pattern>
 bool mark_velocity_multipliers(const Pattern& pat, const std::vector<double>& mvals, const std::vector<double>& cvals,
                                const std::vector<double>& kvals, std::vector<char>& kind) {
@@ -69,17 +80,44 @@ bool mark_velocity_multipliers(const Pattern& pat, const std::vector<double>& mv
     });
     cand[static_cast<std::size_t>(r)] = velocity_only && on_other;
   }
-  // reach[r]: bit 1 an inertial unknown, bit 2 a viscous one or a candidate, bit 4 anything else.
+  // The stiffness DOFs (kind 0, a K diagonal, no M entry in the row) that some candidate may fix.
+  std::vector<char> stiff(kind.size(), 0), fixed(kind.size(), 0);
+  for (int r = 0; r < ne && !kvals.empty(); ++r) {
+    if (kind[static_cast<std::size_t>(r)] != 0 || cand[static_cast<std::size_t>(r)]) continue;
+    bool inertia = false, diagonal = false;
+    row(r, [&](std::size_t q, int c) {
+      inertia = inertia || mvals[q] != 0.0;
+      diagonal = diagonal || (c == r && kvals[q] != 0.0);
+    });
+    stiff[static_cast<std::size_t>(r)] = diagonal && !inertia;
+  }
+  // fixed[j]: a candidate c reaches stiffness DOF j through C (C(c, j)) and its unknown enters j's row (C(j, c)).
+  auto update_fixed = [&] {
+    bool changed = false;
+    for (int j = 0; j < ne; ++j) {
+      if (!stiff[static_cast<std::size_t>(j)]) continue;
+      bool f = false;
+      row(j, [&](std::size_t q, int c) {
+        if (c == j || cvals[q] == 0.0 || !cand[static_cast<std::size_t>(c)]) return;
+        const int back = pat.find(c, j);
+        f = f || (back >= 0 && cvals[static_cast<std::size_t>(back)] != 0.0);
+      });
+      if (f != static_cast<bool>(fixed[static_cast<std::size_t>(j)])) fixed[static_cast<std::size_t>(j)] = f, changed = true;
+    }
+    return changed;
+  };
+  // reach[r]: bit 1 an inertial unknown, bit 2 a viscous one, a candidate or a fixed stiffness DOF, bit 4
+  // anything else.
   std::vector<char> reach(kind.size(), 0);
   for (bool changed = true; changed;) {
-    changed = false;
+    changed = update_fixed();
     for (int r = 0; r < ne; ++r) {
       if (!cand[static_cast<std::size_t>(r)]) continue;
       char bits = 0;
       row(r, [&](std::size_t q, int c) {
         if (c == r || cvals[q] == 0.0) return;
         const auto cc = static_cast<std::size_t>(c);
-        bits |= kind[cc] == 1 ? 1 : (kind[cc] == 2 || cand[cc] ? 2 : 4);
+        bits |= kind[cc] == 1 ? 1 : (kind[cc] == 2 || cand[cc] || fixed[cc] ? 2 : 4);
       });
       reach[static_cast<std::size_t>(r)] = bits;
       if (bits & 4) {
@@ -97,6 +135,9 @@ bool mark_velocity_multipliers(const Pattern& pat, const std::vector<double>& mv
       row(r, [&](std::size_t q, int c) {
         if (cvals[q] != 0.0 && kind[static_cast<std::size_t>(c)] == 5) kind[static_cast<std::size_t>(c)] = 0;
       });
+  update_fixed();
+  for (int j = 0; j < ne; ++j)
+    if (fixed[static_cast<std::size_t>(j)]) kind[static_cast<std::size_t>(j)] = 6;
   for (char k : kind) any5 = any5 || k == 5;
   return any5;
 }
