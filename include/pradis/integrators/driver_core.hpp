@@ -33,8 +33,8 @@ namespace pradis::detail {
 inline constexpr double dof_class_massless = 1;
 /// Massless, but some equation reads its velocity: its column of M or C is nonzero at the zero step (a
 /// velocity-level multiplier, kinds 4 and 5 of initial_derivatives, such as a source current; a node whose
-/// potential a floating source fixes, kind 6 if it has a stiffness diagonal), or it is a node's DOF (a massless rotational node's q1..q3, which its norm
-/// equation reads).
+/// potential a floating source fixes, kind 6 if it has a stiffness diagonal), or it is a node's DOF (a massless
+/// rotational node's q1..q3, which its norm equation reads).
 inline constexpr double dof_class_massless_velocity_read = 2;
 inline constexpr double dof_class_index3 = 3;
 

@@ -102,7 +102,8 @@ bool mark_velocity_multipliers(const Pattern& pat, const std::vector<double>& mv
         const int back = pat.find(c, j);
         f = f || (back >= 0 && cvals[static_cast<std::size_t>(back)] != 0.0);
       });
-      if (f != static_cast<bool>(fixed[static_cast<std::size_t>(j)])) fixed[static_cast<std::size_t>(j)] = f, changed = true;
+      char& fj = fixed[static_cast<std::size_t>(j)];
+      if (f != static_cast<bool>(fj)) fj = f, changed = true;
     }
     return changed;
   };
