@@ -18,6 +18,7 @@
 
 #include "pradis/elements/library.hpp"
 #include "pradis/pradis.hpp"
+#include "testing/test_support.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
@@ -31,14 +32,31 @@ using fsi_newmark = simulation<M>;
 template <class M>
 using fsi_bdf = bdf_simulation<M>;
 
-run_options fsi_options(double end, double tol) {
-  run_options o;
-  o.end = end;
-  o.out = end / 50;
-  o.error_control = true;
-  o.drltx = tol;
-  o.dabsx = tol;
-  return o;
+run_options fsi_options(double end, double tol) { return pradis_test::controlled_run(end, tol, 50); }
+
+// Runs md with o: start(s) at the first output (t = 0), and the largest error(s) over all outputs, which it
+// returns. Checks that the run reached o.end and that the zero step found consistent values (no warning).
+// finish(sim) sees the simulation after the run.
+template <template <class> class Sim, class Start, class Error, class Finish>
+double fsi_largest(fsi_model& md, const run_options& o, Start&& start, Error&& error, Finish&& finish) {
+  Sim<fsi_model> sim(md);
+  std::ostringstream log;
+  sim.log().to(log);
+  double worst = 0;
+  bool first = true;
+  sim.on_output([&](const auto& s) {
+    if (first) {
+      first = false;
+      CHECK(s.time() == 0.0);
+      start(s);
+    }
+    worst = std::max(worst, error(s));
+  });
+  sim.run(o);
+  CHECK(sim.time() == doctest::Approx(o.end));
+  CHECK(log.str().find("warning: no consistent") == std::string::npos);
+  finish(sim);
+  return worst;
 }
 
 // VDC2 of V = 5 V (+ at a) across L = 0.1 H from a to the ground, initial current i0 = 2 A: i = i0 + V t / L.
@@ -50,31 +68,22 @@ double fsi_ramp(const run_options& o) {
   const dof a = md.add_dof("a");
   const auto src = md.add<floating_voltage_dc>("V", {big_v}, a, md.ground());
   const auto ind = md.add<inductor>("L", {l, i0}, a, md.ground());
-  Sim<fsi_model> sim(md);
-  std::ostringstream log;
-  sim.log().to(log);
-  double worst = 0;
-  bool first = true;
-  sim.on_output([&](const auto& s) {
-    if (first) {
-      first = false;
-      CHECK(s.time() == 0.0);
-      CHECK(s.v(a) == doctest::Approx(big_v).epsilon(1e-14));  // the source fixes the voltage at t = 0
-      CHECK(s.u(a) == 0.0);                                     // the flux linkage is a state: kept
-      CHECK(s.a(a) == doctest::Approx(0.0).scale(1e-9));        // dV/dt = 0
-      CHECK(md.work(src)[0] == doctest::Approx(i0).epsilon(1e-14));  // the source carries the inductor's i0
-    }
+  auto start = [&](const auto& s) {
+    CHECK(s.v(a) == doctest::Approx(big_v).epsilon(1e-14));  // the source fixes the voltage at t = 0
+    CHECK(s.u(a) == 0.0);                                     // the flux linkage is a state: kept
+    CHECK(s.a(a) == doctest::Approx(0.0).scale(1e-9));        // dV/dt = 0
+    CHECK(md.work(src)[0] == doctest::Approx(i0).epsilon(1e-14));  // the source carries the inductor's i0
+  };
+  auto error = [&](const auto& s) {
     const double i = md.work(ind)[0];
-    worst = std::max({worst, std::abs(i - (i0 + big_v * s.time() / l)), std::abs(md.work(src)[0] - i)});
+    return std::max(std::abs(i - (i0 + big_v * s.time() / l)), std::abs(md.work(src)[0] - i));
+  };
+  return fsi_largest<Sim>(md, o, start, error, [&](const auto& sim) {
+    if constexpr (std::is_same_v<Sim<fsi_model>, fsi_bdf<fsi_model>>) {
+      // The node is massless, but the source's row reads its voltage (DOF class 2, kept in BDF's norms).
+      CHECK(sim.checkpoint().dof_classes[static_cast<std::size_t>(a.index)] == 2.0);
+    }
   });
-  sim.run(o);
-  CHECK(sim.time() == doctest::Approx(o.end));
-  CHECK(log.str().find("warning: no consistent") == std::string::npos);
-  if constexpr (std::is_same_v<Sim<fsi_model>, fsi_bdf<fsi_model>>) {
-    // The node is massless, but the source's row reads its voltage (DOF class 2, kept in BDF's norms).
-    CHECK(sim.checkpoint().dof_classes[static_cast<std::size_t>(a.index)] == 2.0);
-  }
-  return worst;
 }
 
 // VSIN2 of A sin(2 pi f t) (A = 1 V, f = 50 Hz) across L = 0.1 H with i0 = 0.5 A:
@@ -87,23 +96,15 @@ double fsi_sine(double tol) {
   const dof a = md.add_dof("a");
   md.add<floating_voltage_sine>("V", {1.0, f, 0.0, 0.0}, a, md.ground());
   const auto ind = md.add<inductor>("L", {l, i0}, a, md.ground());
-  Sim<fsi_model> sim(md);
-  std::ostringstream log;
-  sim.log().to(log);
-  double worst = 0;
-  bool first = true;
-  sim.on_output([&](const auto& s) {
-    if (first) {
-      first = false;
-      CHECK(s.v(a) == doctest::Approx(0.0).scale(1e-12));
-      CHECK(s.a(a) == doctest::Approx(w).epsilon(1e-8));  // the voltage's rate A w at t = 0 (viscous_rates)
-      CHECK(md.work(ind)[0] == doctest::Approx(i0).epsilon(1e-14));
-    }
-    worst = std::max(worst, std::abs(md.work(ind)[0] - (i0 + (1 - std::cos(w * s.time())) / (l * w))));
-  });
-  sim.run(fsi_options(2 / f, tol));
-  CHECK(sim.time() == doctest::Approx(2 / f));
-  return worst;
+  auto start = [&](const auto& s) {
+    CHECK(s.v(a) == doctest::Approx(0.0).scale(1e-12));
+    CHECK(s.a(a) == doctest::Approx(w).epsilon(1e-8));  // the voltage's rate A w at t = 0 (viscous_rates)
+    CHECK(md.work(ind)[0] == doctest::Approx(i0).epsilon(1e-14));
+  };
+  auto error = [&](const auto& s) {
+    return std::abs(md.work(ind)[0] - (i0 + (1 - std::cos(w * s.time())) / (l * w)));
+  };
+  return fsi_largest<Sim>(md, fsi_options(2 / f, tol), start, error, [](const auto&) {});
 }
 
 // VDC2 of V = 5 V at a, L = 0.1 H from a to b, C = 1 mF from b to the ground, both starting empty:
@@ -118,21 +119,13 @@ double fsi_lc(double tol) {
   const auto src = md.add<floating_voltage_dc>("V", {big_v}, a, md.ground());
   md.add<inductor>("L", {l, 0.0}, a, b);
   md.add<capacitor>("C", {c}, b, md.ground());
-  Sim<fsi_model> sim(md);
-  double worst = 0;
-  bool first = true;
-  sim.on_output([&](const auto& s) {
-    if (first) {
-      first = false;
-      CHECK(s.v(a) == doctest::Approx(big_v).epsilon(1e-14));
-      CHECK(s.v(b) == 0.0);
-      CHECK(md.work(src)[0] == doctest::Approx(0.0).scale(1e-12));
-    }
-    worst = std::max(worst, std::abs(s.v(b) - big_v * (1 - std::cos(w * s.time()))));
-  });
-  sim.run(fsi_options(0.1, tol));
-  CHECK(sim.time() == doctest::Approx(0.1));
-  return worst;
+  auto start = [&](const auto& s) {
+    CHECK(s.v(a) == doctest::Approx(big_v).epsilon(1e-14));
+    CHECK(s.v(b) == 0.0);
+    CHECK(md.work(src)[0] == doctest::Approx(0.0).scale(1e-12));
+  };
+  auto error = [&](const auto& s) { return std::abs(s.v(b) - big_v * (1 - std::cos(w * s.time()))); };
+  return fsi_largest<Sim>(md, fsi_options(0.1, tol), start, error, [](const auto&) {});
 }
 
 // VDC2 of V = 5 V from a (+; C = 1 mF to the ground, v_a(0) = 2 V by V0) to b (-; L = 0.1 H to the ground,
@@ -148,26 +141,17 @@ double fsi_cap_to_coil(double tol) {
   md.add<capacitor>("C", {c}, a, md.ground());
   md.add<inductor>("L", {l, i0}, b, md.ground());
   md.add<initial_velocity>("V0", {va0}, a);
-  Sim<fsi_model> sim(md);
-  std::ostringstream log;
-  sim.log().to(log);
-  double worst = 0;
-  bool first = true;
-  sim.on_output([&](const auto& s) {
+  auto start = [&](const auto& s) {
+    CHECK(s.v(a) == va0);  // the capacitor keeps its initial voltage
+    CHECK(s.v(b) == doctest::Approx(va0 - big_v).epsilon(1e-14));
+    CHECK(md.work(src)[0] == doctest::Approx(-i0).epsilon(1e-14));  // into a: the coil draws i0 out of b
+    CHECK(s.a(a) == doctest::Approx(-i0 / c).epsilon(1e-12));       // C v_a' = -i0
+  };
+  auto error = [&](const auto& s) {
     const double t = s.time();
-    if (first) {
-      first = false;
-      CHECK(s.v(a) == va0);  // the capacitor keeps its initial voltage
-      CHECK(s.v(b) == doctest::Approx(va0 - big_v).epsilon(1e-14));
-      CHECK(md.work(src)[0] == doctest::Approx(-i0).epsilon(1e-14));  // into a: the coil draws i0 out of b
-      CHECK(s.a(a) == doctest::Approx(-i0 / c).epsilon(1e-12));       // C v_a' = -i0
-    }
-    const double exact = big_v + (va0 - big_v) * std::cos(w * t) - i0 / (c * w) * std::sin(w * t);
-    worst = std::max(worst, std::abs(s.v(a) - exact));
-  });
-  sim.run(fsi_options(0.1, tol));
-  CHECK(sim.time() == doctest::Approx(0.1));
-  return worst;
+    return std::abs(s.v(a) - (big_v + (va0 - big_v) * std::cos(w * t) - i0 / (c * w) * std::sin(w * t)));
+  };
+  return fsi_largest<Sim>(md, fsi_options(0.1, tol), start, error, [](const auto&) {});
 }
 
 }  // namespace

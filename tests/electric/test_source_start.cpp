@@ -28,15 +28,7 @@ namespace {
 using fss_model =
     model<floating_voltage_dc, floating_voltage_sine, floating_voltage_table, resistor, capacitor, diode, voltage_dc>;
 
-run_options fss_options(double end, double tol) {
-  run_options o;
-  o.end = end;
-  o.out = end / 50;
-  o.error_control = true;
-  o.drltx = tol;
-  o.dabsx = tol;
-  return o;
-}
+run_options fss_options(double end, double tol) { return pradis_test::controlled_run(end, tol, 50); }
 
 std::size_t fss_count(const std::string& text, const std::string& what) {
   std::size_t n = 0;

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "dense_test_solver.hpp"
+#include "testing/test_support.hpp"
 #include "zero_step_test_support.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/bdf/bdf_simulation.hpp"
@@ -124,15 +125,7 @@ std::string ast_warning(const std::string& why) {
          why + "): they start at their initial values, and the first step meets their equations";
 }
 
-run_options ast_controlled(double end, double tol) {
-  run_options o;
-  o.end = end;
-  o.out = end / 20;
-  o.error_control = true;
-  o.drltx = tol;
-  o.dabsx = tol;
-  return o;
-}
+run_options ast_controlled(double end, double tol) { return pradis_test::controlled_run(end, tol, 20); }
 
 template <class M>
 using ast_newmark = simulation<M>;

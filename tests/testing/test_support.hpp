@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "pradis/core/error.hpp"
+#include "pradis/integrators/options.hpp"
 
 // Whether this build runs under a sanitizer (the asan-ubsan preset: -O0 with AddressSanitizer and UBSan,
 // some 200x slower than the dev preset's -O1: 180x to 570x per test case, measured 2026-11-30).
@@ -51,6 +52,18 @@ std::optional<pradis::error> error_of(F&& f) {
     return e;
   }
   return std::nullopt;
+}
+
+/// Options of an error-controlled run to `end` with `outputs` output intervals and
+/// DRLTX = DABSX = tol (the other options at their defaults).
+inline pradis::run_options controlled_run(double end, double tol, int outputs) {
+  pradis::run_options o;
+  o.end = end;
+  o.out = end / outputs;
+  o.error_control = true;
+  o.drltx = tol;
+  o.dabsx = tol;
+  return o;
 }
 
 /// Whether `s` contains `part`.
