@@ -179,8 +179,8 @@ class driver_core {
       const auto d = static_cast<std::size_t>(asm_.dof_of(i));
       if (kind[static_cast<std::size_t>(i)] == 3) classes[d] = dof_class_index3;
       const char k = kind[static_cast<std::size_t>(i)];
-      if ((k == 0 || k >= 4) && !hidden[d]) {  // kinds 4, 5: a source current, whose value v others read; 6: a
-        // node whose velocity a source fixes
+      // Kinds 4, 5: a source current, whose value v others read; 6: a node whose velocity a source fixes.
+      if ((k == 0 || k >= 4) && !hidden[d]) {
         const bool read_here = static_cast<std::size_t>(i) < read.size() && read[static_cast<std::size_t>(i)];
         classes[d] = k >= 4 || node_dof[d] || read_here ? dof_class_massless_velocity_read : dof_class_massless;
       }

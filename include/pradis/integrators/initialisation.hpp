@@ -173,8 +173,7 @@ bool mark_index3_multipliers(const Pattern& pat, const std::vector<double>& mval
 /// `evaluate(c, want_jacobian)` evaluates the model at s into `as`. Returns
 /// the kind of each equation (1 inertial, 2 viscous, 3 index-3 multiplier,
 /// 4 and 5 velocity-level multipliers, 6 a stiffness DOF whose velocity one fixes (velocity_constraints.hpp),
-/// 0 algebraic), or an empty
-/// vector when no consistent derivatives could be found (a warning is logged
+/// 0 algebraic), or an empty vector when no consistent derivatives could be found (a warning is logged
 /// and the free DOFs start with zero accelerations). With `velocity_read`, per equation
 /// whether its DOF's column of M or C holds a nonzero entry at the initial state (some
 /// equation reads the DOF's velocity or acceleration, its own or another).

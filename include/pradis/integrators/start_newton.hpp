@@ -75,8 +75,8 @@ double start_residual(const Model& m, const Assembler& as, const std::vector<cha
 
 /// The zero step's matrix (initial_derivatives) in the pattern's order: M in the columns of
 /// inertial unknowns, C in those of viscous ones, multipliers and fixed stiffness DOFs (kinds 2, 3, 4, 6),
-/// the identity on algebraic DOFs; an index-3 constraint row has K in the inertial columns (its second derivative), a
-/// kind-5 row (velocity_constraints.hpp) C there (its first derivative).
+/// the identity on algebraic DOFs; an index-3 constraint row has K in the inertial columns (its second
+/// derivative), a kind-5 row (velocity_constraints.hpp) C there (its first derivative).
 inline void start_matrix(const linalg::sparsity_pattern& pat, const std::vector<char>& kind, const std::vector<double>& mvals,
                          const std::vector<double>& cvals, const std::vector<double>& kvals, std::vector<double>& j) {
   const int ne = static_cast<int>(kind.size());
@@ -298,8 +298,8 @@ void velocity_constraint_rates(const Model& m, Assembler& as, global_state& s, c
 /// The rates of the viscous unknowns at the zero step: a viscous DOF's velocity (a pressure
 /// at a node without capacitance, the series point of a spring and a damper) follows from its
 /// equation F_i = 0, so its rate a_i follows from dF_i/dt = 0 along the motion. For the
-/// viscous equations, velocity-level multipliers and the DOFs they fix (kinds 2, 4 and 6, not a node's hidden or
-/// slaved DOF) whose rows hold no inertia entry, dF_i/dt comes from rates_along_motion and
+/// viscous equations, velocity-level multipliers and the DOFs they fix (kinds 2, 4 and 6, not a node's
+/// hidden or slaved DOF) whose rows hold no inertia entry, dF_i/dt comes from rates_along_motion and
 /// C_vv da_v = -dF_v/dt is solved for their rates. Without this they started at 0 and
 /// the error test of the first steps saw the jump (a node between a pump and a check valve
 /// whose pressure rises with the accumulator behind the valve failed at SMIN); with the
