@@ -126,9 +126,11 @@ std::pair<std::vector<std::string>, std::vector<std::string>> apply_initial_cond
 
 /// Marks the index-3 constraint equations among the algebraic ones (kind 0) as
 /// kind 3: no inertia or viscosity in the whole row (a constraint on positions:
-/// only K entries, some in an inertial column) and the DOF's value enters other
-/// equations through C (the multiplier of the flows G^T lambda, the velocity-level
-/// unknown of an internal DOF: LINKX, SPH3X, REV3X, ...). Returns whether any was found.
+/// only K entries, some in an inertial column, none on the row's own DOF) and the
+/// DOF's value enters other equations through C (the multiplier of the flows
+/// G^T lambda, the velocity-level unknown of an internal DOF: LINKX, SPH3X, REV3X,
+/// ...). A massless node held by springs whose velocity another equation reads has
+/// a K diagonal: it stays algebraic. Returns whether any was found.
 template <class Pattern>
 bool mark_index3_multipliers(const Pattern& pat, const std::vector<double>& mvals, const std::vector<double>& cvals,
                              const std::vector<double>& kvals, std::vector<char>& kind) {
@@ -145,6 +147,7 @@ bool mark_index3_multipliers(const Pattern& pat, const std::vector<double>& mval
     for (int q = pat.row_ptr[static_cast<std::size_t>(r)]; q < pat.row_ptr[static_cast<std::size_t>(r) + 1]; ++q) {
       const auto sq = static_cast<std::size_t>(q);
       if (mvals[sq] != 0.0 || cvals[sq] != 0.0) position_only = false;
+      if (pat.col[sq] == r && kvals[sq] != 0.0) position_only = false;  // a stiffness DOF, not a multiplier
       if (kvals[sq] != 0.0 && kind[static_cast<std::size_t>(pat.col[sq])] == 1) on_inertial = true;
     }
     if (position_only && on_inertial) {
