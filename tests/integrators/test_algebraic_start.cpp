@@ -233,8 +233,8 @@ TEST_SUITE("integrators/algebraic start") {
     // The node's position is put on its equation to round-off d (about eps |n| = 5e-18 m); its velocity, the
     // position's BDF derivative, then carries about d / h, 5e-7 m/s at the first step (h ~ 1e-11 s), against a
     // tolerance of 1e-10 m/s. Before, BDF ended with code 140 at t = 0 at DRLTX = DABSX = 1e-9 and 1e-10;
-    // no equation reads that velocity (driver_core::unused_velocity). Measured (largest |x - exact| over the
-    // outputs): 3.2e-8 / 5.0e-9 at 1e-9 / 1e-10, the same mass on one spring of the series stiffness
+    // the node's displacement is the unknown, its velocity only its derivative (driver_core::unused_velocity).
+    // Measured (largest |x - exact| over the outputs): 3.2e-8 / 5.0e-9 at 1e-9 / 1e-10, the same mass on one spring of the series stiffness
     // 3.2e-8 / 3.8e-9: the node costs no accuracy here either.
     const double b9 = ast_series<ast_bdf>(1e-9), b10 = ast_series<ast_bdf>(1e-10);
     const double sb9 = ast_series<ast_bdf>(1e-9, true), sb10 = ast_series<ast_bdf>(1e-10, true);
@@ -245,15 +245,15 @@ TEST_SUITE("integrators/algebraic start") {
     CHECK(b10 < b9 / 3);
   }
 
-  TEST_CASE("BDF keeps the velocity of a massless DOF that an equation reads (its DOF class)") {
-    // Classes (driver_core.hpp): 0 other, 1 massless, 2 massless with a velocity that some equation reads (its
-    // column of M or C nonzero at the zero step), which BDF keeps in its norms.
+  TEST_CASE("BDF keeps the velocity of a massless DOF whose velocity is an unknown of its own (its DOF class)") {
+    // Classes (driver_core.hpp): 0 other, 1 massless, 2 massless with a velocity that is an unknown of its own
+    // (a source current, a node whose potential a source fixes), which BDF keeps in its norms.
     const std::vector<double> springs = ast_series_classes();
     CHECK(springs[0] == 0.0);  // the mass
-    CHECK(springs[1] == 1.0);  // the node: no equation reads its velocity
+    CHECK(springs[1] == 1.0);  // the node: its equation fixes its displacement
     // A floating source of V = 5 V across an inductor of L = 0.1 H: the node's row has only the inductor's K and
-    // the source current's C entry, but the source's row reads the node's potential v (its velocity); the
-    // current, the source's internal DOF, is read by the node's row. The current ramps as i = V t / L, which
+    // the source current's C entry, and the source's row fixes the node's potential v (its velocity, kind 6 of
+    // the zero step); the current, the source's internal DOF, is a velocity-level multiplier (kind 4). The current ramps as i = V t / L, which
     // BDF's fixed steps of 1 ms integrate exactly: 5 A at t = 0.1 s.
     using M = model<floating_voltage_dc, inductor>;
     M md;

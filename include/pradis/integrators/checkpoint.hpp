@@ -38,8 +38,8 @@ namespace pradis {
 /// Version 3 added the DOF classes of the zero step (checkpoint_data::dof_classes); a version-2 checkpoint is refused
 /// (a restored run needs them to leave index-3 multipliers out of its error tests). Version 4 has the same fields;
 /// its model fingerprint also covers the model's nodes (node kinds), so a version-3 checkpoint is refused as well.
-/// Version 5 has the same fields and a fourth DOF class, the massless DOFs whose velocity some equation reads (a
-/// source current; class 1 before), whose velocity the BDF driver keeps in its norms; a version-4 checkpoint is
+/// Version 5 has the same fields and a fourth DOF class, the massless DOFs whose velocity is an unknown of its own
+/// (a source current; class 1 before), whose velocity the BDF driver keeps in its norms; a version-4 checkpoint is
 /// refused.
 inline constexpr std::uint32_t checkpoint_version = 5;
 

@@ -31,11 +31,11 @@ namespace pradis::detail {
 
 /// The DOF classes of driver_core::dof_classes() (a checkpoint field).
 inline constexpr double dof_class_massless = 1;
-/// Massless, but some equation reads its velocity: its column of M or C is nonzero at the zero step (a
-/// velocity-level multiplier, kinds 4 and 5 of initial_derivatives, such as a source current; a node whose
-/// potential a floating source fixes, kind 6 if it has a stiffness diagonal), or it is a node's DOF (a massless
-/// rotational node's q1..q3, which its norm equation reads).
-inline constexpr double dof_class_massless_velocity_read = 2;
+/// Massless, but its velocity is an unknown of its own, not the derivative of a displacement that its equation
+/// fixes: a velocity-level multiplier (kinds 4 and 5 of initial_derivatives, such as a source current), a node
+/// whose potential a floating source fixes (kinds 4 and 6), or a node's DOF (a massless rotational node's
+/// q1..q3, which its norm equation reads through q').
+inline constexpr double dof_class_massless_velocity_unknown = 2;
 inline constexpr double dof_class_index3 = 3;
 
 /// The state and element-level phases shared by the drivers (see the file comment).
@@ -159,10 +159,9 @@ class driver_core {
     started_ = true;
     hidden_dof_velocities(m_, asm_, s_, opt_.newton.dabsi, log_, set_v);
     slaved_dof_start(m_, asm_, s_, opt_.newton.dabsi, log_, set_u, set_v);
-    std::vector<char> read;
     const std::vector<char> kind = initial_derivatives(
         m_, asm_, solver, s_, rhs_, stats_, log_, opt_.newton.dabsi,
-        [&](const jacobian_coefficients& c, bool jac, double dt = 0.0) { evaluate_at(dt, c, jac); }, &read);
+        [&](const jacobian_coefficients& c, bool jac, double dt = 0.0) { evaluate_at(dt, c, jac); });
     warn_lost_initial_conditions(m_, asm_, kind, set_u, set_v, log_);
     std::vector<double> classes(static_cast<std::size_t>(m_.dof_count()), 0.0);
     const std::vector<char> hidden = m_.hidden_dofs(true);  // a node's hidden or slaved DOF: not counted as massless
@@ -179,18 +178,18 @@ class driver_core {
       const auto d = static_cast<std::size_t>(asm_.dof_of(i));
       if (kind[static_cast<std::size_t>(i)] == 3) classes[d] = dof_class_index3;
       const char k = kind[static_cast<std::size_t>(i)];
-      // Kinds 4, 5: a source current, whose value v others read; 6: a node whose velocity a source fixes.
-      if ((k == 0 || k >= 4) && !hidden[d]) {
-        const bool read_here = static_cast<std::size_t>(i) < read.size() && read[static_cast<std::size_t>(i)];
-        classes[d] = k >= 4 || node_dof[d] || read_here ? dof_class_massless_velocity_read : dof_class_massless;
-      }
+      // Kinds 4, 5: a source current, whose value is its v; 6: a node whose velocity a source fixes. Kind 0: an
+      // algebraic DOF, whose displacement its equation fixes (its velocity is that displacement's derivative,
+      // even where another equation reads it), unless it is a node's DOF.
+      if ((k == 0 || k >= 4) && !hidden[d])
+        classes[d] = k >= 4 || node_dof[d] ? dof_class_massless_velocity_unknown : dof_class_massless;
     }
     set_dof_classes(classes);
   }
   /// The DOF classes of the zero step, per DOF: dof_class_index3 (the multiplier of an index-3 constraint),
   /// dof_class_massless (an equation with neither mass nor viscosity; a node's hidden DOF not counted),
-  /// dof_class_massless_velocity_read (such an equation whose DOF's velocity some equation reads: a source
-  /// current) or 0.
+  /// dof_class_massless_velocity_unknown (such an equation whose DOF's velocity is an unknown of its own: a
+  /// source current) or 0.
   /// Checkpoints keep them, so that a restored run leaves the same DOFs out of its error tests and warns as the
   /// first run.
   std::vector<double> dof_classes() const {
@@ -198,7 +197,7 @@ class driver_core {
     for (std::size_t d = 0; d < c.size() && d < index3_.size(); ++d)
       if (index3_[d]) c[d] = dof_class_index3;
     for (std::size_t d = 0; d < c.size() && d < massless_.size(); ++d)
-      if (massless_[d]) c[d] = velocity_read_[d] ? dof_class_massless_velocity_read : dof_class_massless;
+      if (massless_[d]) c[d] = velocity_unknown_[d] ? dof_class_massless_velocity_unknown : dof_class_massless;
     return c;
   }
   /// Per DOF: left out of the local error tests: the index-3 multipliers (index3_) and the
@@ -210,34 +209,35 @@ class driver_core {
   /// a second spring, started with the node on its equation (algebraic_start.hpp), had NEWMARK's estimate of
   /// the node's round-off, about eps |u| / h, hold the first steps near SMIN until code 141 at t = 2.7e-9.
   const std::vector<char>& constrained() const noexcept { return constrained_; }
-  /// Per DOF: massless, no equation reads its velocity (dof_class_massless, not dof_class_massless_velocity_read:
-  /// its column of M and C is zero at the zero step, and it is no node's DOF), and not a column of an index-3
-  /// constraint's row. BDF leaves these velocities out of its Newton and error norms: Newton puts the position on
+  /// Per DOF: massless with a displacement that its equation fixes (dof_class_massless, not
+  /// dof_class_massless_velocity_unknown), and not a column of an index-3 constraint's row. BDF leaves these
+  /// velocities out of its Newton and error norms, as IDA does with every derivative: Newton puts the position on
   /// its equation to round-off d, about eps |u|, and the velocity, the position's BDF derivative, then carries
   /// about c d = d / h, which at the first steps (h ~ 1e-11 s) outweighed any tolerance
-  /// (bdf_simulation::set_weights).
+  /// (bdf_simulation::set_weights). The position keeps its weight, and where another equation reads the
+  /// velocity, that equation's own DOFs are tested.
   const std::vector<char>& unused_velocity() const noexcept { return unused_velocity_; }
   /// Sets index3_, the massless DOFs and their count from classes as dof_classes() gives them.
   void set_dof_classes(const std::vector<double>& classes) {
     index3_.assign(classes.size(), 0);
     massless_.assign(classes.size(), 0);
-    velocity_read_.assign(classes.size(), 0);
+    velocity_unknown_.assign(classes.size(), 0);
     massless_count_ = 0;
     massless_dof_ = -1;
     error_skip_ = slaved_dofs(m_);
     error_skip_.resize(classes.size(), 0);
     for (std::size_t d = 0; d < classes.size(); ++d) {
       if (classes[d] == dof_class_index3) index3_[d] = error_skip_[d] = 1;
-      if (classes[d] == dof_class_massless || classes[d] == dof_class_massless_velocity_read) {
+      if (classes[d] == dof_class_massless || classes[d] == dof_class_massless_velocity_unknown) {
         massless_[d] = 1;
-        velocity_read_[d] = classes[d] == dof_class_massless_velocity_read;
+        velocity_unknown_[d] = classes[d] == dof_class_massless_velocity_unknown;
         if (massless_count_++ == 0) massless_dof_ = static_cast<int>(d);
       }
     }
     constrained_ = massless_;
     unused_velocity_ = massless_;
     for (std::size_t d = 0; d < classes.size(); ++d)
-      if (velocity_read_[d]) unused_velocity_[d] = 0;
+      if (velocity_unknown_[d]) unused_velocity_[d] = 0;
     const auto& pat = asm_.pattern();
     for (std::size_t d = 0; d < classes.size(); ++d) {
       const int r = index3_[d] ? asm_.equation_of(static_cast<int>(d)) : -1;
@@ -300,7 +300,7 @@ class driver_core {
   std::vector<char> error_skip_;  // index3_ and the slaved DOFs (error_skip())
   std::vector<char> constrained_;  // the massless DOFs and the columns of the index-3 constraints' rows (constrained())
   std::vector<char> unused_velocity_;  // unused_velocity()
-  std::vector<char> velocity_read_;  // the massless DOFs of class dof_class_massless_velocity_read
+  std::vector<char> velocity_unknown_;  // the massless DOFs of class dof_class_massless_velocity_unknown
   /// Equations with neither mass nor viscosity (algebraic, found at the zero step; index-3 multipliers and the
   /// nodes' hidden DOFs, such as the rotational q4, not counted), and the first one's DOF (-1 if none): the
   /// undamped-scheme warning of simulation::run names it.

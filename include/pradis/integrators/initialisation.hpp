@@ -177,15 +177,11 @@ bool mark_index3_multipliers(const Pattern& pat, const std::vector<double>& mval
 /// the kind of each equation (1 inertial, 2 viscous, 3 index-3 multiplier,
 /// 4 and 5 velocity-level multipliers, 6 a stiffness DOF whose velocity one fixes (velocity_constraints.hpp),
 /// 0 algebraic), or an empty vector when no consistent derivatives could be found (a warning is logged
-/// and the free DOFs start with zero accelerations). With `velocity_read`, per equation
-/// whether its DOF's column of M or C holds a nonzero entry at the initial state (some
-/// equation reads the DOF's velocity or acceleration, its own or another).
+/// and the free DOFs start with zero accelerations).
 template <class Model, class Assembler, class Solver, class Evaluate>
 std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, global_state& s,
                                       std::vector<double>& rhs, run_statistics& stats, diagnostics& log,
-                                      double dabsi, Evaluate&& evaluate,
-                                      std::vector<char>* velocity_read = nullptr) {
-  if (velocity_read) velocity_read->assign(static_cast<std::size_t>(as.equations()), 0);
+                                      double dabsi, Evaluate&& evaluate) {
   if constexpr (!Assembler::any_m && !Assembler::any_c) {
     // Every DOF is algebraic (a static model run as a transient): its positions on its equations.
     std::vector<char> kind(static_cast<std::size_t>(as.equations()), 0);
@@ -204,9 +200,6 @@ std::vector<char> initial_derivatives(Model& m, Assembler& as, Solver& solver, g
       evaluate(jacobian_coefficients{0, 1, 0}, true);
       cvals.assign(as.values().begin(), as.values().end());
     }
-    if (velocity_read)
-      for (std::size_t q = 0; q < pat.col.size(); ++q)
-        if (mvals[q] != 0.0 || cvals[q] != 0.0) (*velocity_read)[static_cast<std::size_t>(pat.col[q])] = 1;
     std::vector<char> kind(static_cast<std::size_t>(ne), 0);
     for (int i = 0; i < ne; ++i) {
       const int q = pat.find(i, i);
