@@ -208,4 +208,44 @@ TEST_SUITE("electric/floating source across an inductor") {
     CHECK(b9 < b6 / 300);
     CHECK(n6 < 1e-3);
   }
+
+  TEST_CASE("VDC2 across two inductors in series: the zero step warns; BDF runs, NEWMARK ends with code 131") {
+    // A known limit (docs/domains-electric-pneumatic.md, "floating source"): both nodes' rows fix the one source
+    // current, so the zero step's matrix is singular, and kinds 4 and 6 fall back to algebraic with a warning.
+    // BDF then runs (the nodes are massless, their velocities out of its norms) and gives the current of the
+    // series inductance, i = V t / (L1 + L2), to round-off (measured 6e-15). NEWMARK's first Newton matrix at
+    // SMIN is singular (the flux form is index 2 here): code 131, naming the nodes.
+    constexpr double big_v = 5.0, l1 = 0.1, l2 = 0.3;
+    auto build = [&](fsi_model& md) {
+      const dof a = md.add_dof("a"), b = md.add_dof("b");
+      md.add<floating_voltage_dc>("V", {big_v}, a, b);
+      md.add<inductor>("L2", {l2, 0.0}, md.ground(), b);
+      return md.add<inductor>("L1", {l1, 0.0}, a, md.ground());
+    };
+    {
+      fsi_model md;
+      const auto coil = build(md);
+      fsi_bdf<fsi_model> sim(md);
+      std::ostringstream log;
+      sim.log().to(log);
+      double worst = 0;
+      sim.on_output([&](const auto& s) {
+        worst = std::max(worst, std::abs(md.work(coil)[0] - big_v * s.time() / (l1 + l2)));
+      });
+      sim.run(fsi_options(0.1, 1e-6));
+      CHECK(sim.time() == doctest::Approx(0.1));
+      CHECK(worst < 1e-12);
+      CHECK(pradis_test::contains(log.str(), "warning: no consistent initial multipliers"));
+    }
+    fsi_model md;
+    build(md);
+    fsi_newmark<fsi_model> sim(md);
+    std::ostringstream log;
+    sim.log().to(log);
+    const auto e = pradis_test::error_of([&] { sim.run(fsi_options(0.1, 1e-6)); });
+    REQUIRE(e.has_value());
+    CHECK(e->code() == error_code::singular_matrix);
+    CHECK(pradis_test::contains(e->what(), "the equations of DOFs 'a', 'b' depend on each other"));
+    CHECK(pradis_test::contains(log.str(), "warning: no consistent initial multipliers"));
+  }
 }
