@@ -7,7 +7,10 @@
 //  - a stiff damped mass-spring system (about 1 Hz and 100 kHz) completes in few
 //    steps once the fast mode has decayed, with the dissipative schemes;
 //  - error rejections happen; SMIN failure names the DOF and the time; CONTROL
-//    puts a floor under the step; bad options are rejected naming the option.
+//    puts a floor under the step; bad options are rejected naming the option;
+//  - the round-off floor of the error test does not excuse a step that fell far below
+//    the stage's steps (a pendulum chain under NEWMARK, against HHT on the same chain
+//    and the RK4 solution of bench/chain_reference.hpp).
 
 #include <doctest/doctest.h>
 
@@ -16,13 +19,16 @@
 #include <complex>
 #include <limits>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "../../bench/chain_reference.hpp"
 #include "integrator_test_support.hpp"
 #include "pradis/elements/library.hpp"
 #include "pradis/integrators/newmark.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "testing/test_support.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
@@ -324,4 +330,56 @@ TEST_CASE("error control options: DABSX, DRLTX, CONTROL out of range -> invalid_
   m.add<linear_spring>("spring", {1.0}, x, m.ground());
   simulation sim(m, newmark{});
   CHECK_NOTHROW(sim.run({.end = 0.1, .dabsx = 0, .drltx = 0}));
+}
+
+// The round-off floor of the error test (step_control.hpp, roundoff_floor_drop). A chain of ten
+// 0.05 kg point masses on 0.1 m LINKX links, hinged at the origin and released horizontally
+// (bench/chain_reference.hpp, the work-precision problem "chain"), under NEWMARK at
+// DRLTX = DABSX = 1e-4: at t = 0.3576 s the undamped alternation of the link forces keeps the
+// estimate above the tolerance at every step, and the step falls from ~1e-3 s to SMIN. Before,
+// the floor 4 eps |u| / h passed it there, the step grew back to ~2e-8 s and the run crawled
+// through 6.6 million steps (150 s) to a state 8.7e-2 off the reference (the benchmark's error: the
+// largest relative error of the link angles and rates). Now it ends with code 141
+// naming the alternation, within a thousand steps, and HHT-0.1, which the message recommends,
+// runs the same chain at the same tolerance to the RK4 reference's tip.
+TEST_CASE("error control: a step far below the stage's steps gets no round-off floor (NEWMARK chain -> code 141)") {
+  constexpr int n = 10;
+  constexpr double l = 0.1, mass = 0.05, g = 9.81, end = 0.4;
+  model<point_mass, planar_rigid_link, constant_force> m;
+  std::vector<dof> x, y;
+  for (int i = 0; i < n; ++i) {
+    x.push_back(m.add_dof("x" + std::to_string(i + 1)));
+    y.push_back(m.add_dof("y" + std::to_string(i + 1)));
+    m.add<point_mass>("mx" + std::to_string(i + 1), {mass}, x.back());
+    m.add<point_mass>("my" + std::to_string(i + 1), {mass}, y.back());
+    m.add<constant_force>("g" + std::to_string(i + 1), {-mass * g}, y.back());
+    const dof ax = i == 0 ? m.ground() : x[x.size() - 2], ay = i == 0 ? m.ground() : y[y.size() - 2];
+    m.add<planar_rigid_link>("link" + std::to_string(i + 1), {i * l, 0.0, (i + 1) * l, 0.0}, ax, ay, x.back(),
+                             y.back());
+  }
+  // The work-precision benchmark's options for this point (bench/work_precision/work_precision.cpp).
+  const run_options o{.end = end, .smax = end / 20, .smin = 1e-12,
+                      .newton = {.dabsu = 1e-7, .drltu = 1e-7, .dabsi = 1e-10, .drlti = 1e-7, .itr = 8},
+                      .error_control = true, .dabsx = 1e-4, .drltx = 1e-4};
+  {
+    simulation sim(m, newmark{});
+    std::ostringstream log;
+    sim.log().to(log);
+    const auto e = pradis_test::error_of([&] { sim.run(o); });
+    REQUIRE(e.has_value());
+    CHECK(e->code() == error_code::step_too_small);
+    CHECK(e->message().find("does not damp their alternation") != std::string::npos);
+    CHECK(e->message().find("use HHT or GALPHA") != std::string::npos);
+    CHECK(sim.time() == doctest::Approx(0.3576).epsilon(1e-3));
+    CHECK(sim.statistics().steps < 1000);
+  }
+  simulation sim(m, hht{-0.1});
+  std::ostringstream log;
+  sim.log().to(log);
+  sim.run(o);
+  CHECK(sim.time() == doctest::Approx(end));
+  const Eigen::Vector2d tip = pradis_reference::chain_tip(pradis_reference::chain_reference(n, l, g, end, 40000), l);
+  const double dx = n * l + sim.u(x.back()) - tip.x(), dy = sim.u(y.back()) - tip.y();
+  MESSAGE("HHT-0.1 at 1e-4: ", sim.statistics().steps, " steps, tip off the reference by ", std::hypot(dx, dy), " m");
+  CHECK(std::hypot(dx, dy) < 1e-4);
 }

@@ -90,6 +90,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     if (!(opt.end > t_)) fail_option("END = " + num(opt.end) + " must be after the current time " + num(t_));
     newton_.invalidate();  // every stage starts with a fresh Jacobian
     precision_warned_ = false;
+    h_largest_ = 0;
     if (!started_) {
       zero_step();
     } else {
@@ -342,6 +343,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
       recommended_ = asm_.recommended_step();
       a_prev_ = s0_.a;
       h_prev_ = h;
+      h_largest_ = std::max(h_largest_, h);
       commit();
       if (!precision_warned_)  // once per stage (precision.hpp)
         if (auto l = detail::displacement_precision_loss(scheme_, asm_, s_, s0_, h, opt_, m_.scales())) {
@@ -370,7 +372,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   bool error_accepts(double h) {
     const error_test e =
         local_error_test(scheme_, asm_, s_, s0_, a_prev_, h_prev_, h, opt_, m_.scales(), this->error_skip(),
-                         this->constrained());
+                         this->constrained(), h >= roundoff_floor_drop * h_largest_);
     h_error_ = e.h_next;
     stats_.limiting_dof = e.worst;
     if (e.passed) {
@@ -411,6 +413,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   double h_nominal_ = 0;
   double h_error_ = 0;
   double h_prev_ = 0;
+  double h_largest_ = 0;  // the largest step accepted in this stage (roundoff_floor_drop)
   Eigen::VectorXd a_prev_;
   Eigen::VectorXd p_start_;  // p at the step's start before pseudo_acceleration_shift
   int successes_ = 0;
