@@ -229,7 +229,7 @@ TEST_SUITE("lang/schemes") {
     expect(small_with("'SHTERM (", "'NEWMARK (ALPHA=-0.1, "), "14:18", {"key ALPHA belongs to HHT"});
     expect(small_with("SMAX=1E-3", "SMAX=1E-3, RHOINF=0.5"), "14:37", {"key RHOINF belongs to GALPHA, not to SHTERM"});
     expect(small_with("'SHTERM (", "'GALPHA (SCHEME=1, "), "14:17",
-           {"key SCHEME of GALPHA is not implemented", "CONTROL PREDICT SAVE OPTIM RHOINF)"});
+           {"key SCHEME of GALPHA is not implemented", "CONTROL PREDICT SAVE OPTIM NSTEPMAX RHOINF)"});
     expect(small_with("'SHTERM (", "'HALPHA ("), "14:9", {"unknown integration program 'HALPHA'", "did you mean"});
     // A run-time option error names the program of the stage.
     expect(small_with("'SHTERM (END=0.1, SMAX=1E-3", "'GALPHA (END=0.1, SMAX=-1"), "14:3", {"GALPHA: SMAX = -1 must be > 0"});

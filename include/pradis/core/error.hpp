@@ -32,6 +32,7 @@ enum class error_code : int {
   singular_matrix = 131,         ///< a zero or tiny pivot during factorisation
   newton_failure = 140,          ///< Newton did not converge at the minimum step SMIN
   step_too_small = 141,          ///< the step fell below SMIN for another reason (repeated singular steps)
+  step_budget = 142,             ///< the stage used up its NSTEPMAX accepted steps before END
   non_finite = 150,              ///< an element produced a NaN or infinite flow or Jacobian entry
   io_error = 160,                ///< a file could not be read or written
 };
@@ -49,6 +50,7 @@ constexpr std::string_view to_string(error_code c) noexcept {
     case error_code::singular_matrix: return "singular matrix";
     case error_code::newton_failure: return "Newton failure";
     case error_code::step_too_small: return "step too small";
+    case error_code::step_budget: return "step budget used up";
     case error_code::non_finite: return "non-finite value";
     case error_code::io_error: return "I/O error";
   }

@@ -26,6 +26,7 @@
 #include "pradis/integrators/failures.hpp"
 #include "pradis/integrators/initialisation.hpp"
 #include "pradis/integrators/options.hpp"
+#include "pradis/integrators/step_watch.hpp"
 
 namespace pradis::detail {
 
@@ -281,6 +282,22 @@ class driver_core {
                    m_.old_state_pool().size(), m_.new_state_pool().size());
     return c;
   }
+  /// After an accepted step of size h and its outputs: the crawl warning, once per stage,
+  /// and the step budget (step_watch.hpp). Throws step_budget when the stage used up
+  /// NSTEPMAX accepted steps before END.
+  void watch_accepted(double h) {
+    watch_.accepted(h, t_);
+    if (watch_.crawl_to_report()) {
+      std::string why;
+      if (!opt_.ignore && recommended_ <= h * (1 + 1e-9))
+        why = "an element's recommended step (STEPMD) " + num(recommended_) + " sets the step";
+      else if (opt_.error_control && stats_.limiting_dof >= 0)
+        why = "the local error of DOF '" + m_.dof_name(stats_.limiting_dof) + "' sets the step";
+      log_.write(watch_.crawl_text(t_, h, opt_.end, why));
+    }
+    if (watch_.budget_spent(opt_.max_steps) && t_ < opt_.end * (1 - 1e-14) - 1e-300)
+      raise(watch_.budget_error(opt_.max_steps, t_, h, opt_.end));
+  }
   /// Writes the error to the log and throws it.
   [[noreturn]] void raise(const error& e) {
     log_.write(e);
@@ -314,6 +331,7 @@ class driver_core {
   double t_ = 0;
   double recommended_ = std::numeric_limits<double>::infinity();
   bool started_ = false;
+  step_watch watch_;  // the stage's accepted steps (watch_accepted)
 };
 
 }  // namespace pradis::detail

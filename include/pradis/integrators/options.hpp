@@ -73,6 +73,10 @@ struct run_options {
   /// step does not resolve (step_control.hpp). false: PRADIS's one-step difference.
   bool two_step_estimate = true;
   double control = 0.0;      ///< CONTROL: no error-driven step reduction below this step (0: none)
+  /// NSTEPMAX: the most steps the stage may accept (0: no limit). A stage that reaches it
+  /// before END ends with error code 142 (step_budget), its results up to there kept: a
+  /// bound on a run that crawls (step_watch.hpp).
+  long max_steps = 0;
 };
 
 /// What one attempted step ended in.
@@ -164,6 +168,7 @@ inline std::optional<std::string> check_options(const run_options& o) {
   if (o.error_control && !(effective_dabsx(o) + o.drltx > 0))
     return "error control needs DABSX + DRLTX > 0 (both are zero)";
   if (bad(o.control) || o.control < 0) return "CONTROL = " + num(o.control) + " must be >= 0";
+  if (o.max_steps < 0) return "NSTEPMAX = " + std::to_string(o.max_steps) + " must be >= 0 (0: no limit)";
   return std::nullopt;
 }
 

@@ -59,9 +59,9 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   using core = detail::driver_core<model<Es...>>;
   using core::asm_, core::index3_, core::massless_count_, core::massless_dof_, core::log_, core::m_, core::opt_,
       core::prescribed_, core::recommended_, core::rhs_, core::s0_, core::s_, core::started_, core::stats_, core::t_,
-      core::last_failure_;
+      core::last_failure_, core::watch_;
   using core::bad_dof, core::checked, core::commit, core::context_for, core::evaluate, core::for_each_instance,
-      core::new_integration, core::raise;
+      core::new_integration, core::raise, core::watch_accepted;
 
  public:
   /// The model type the simulation runs.
@@ -90,7 +90,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     if (!(opt.end > t_)) fail_option("END = " + num(opt.end) + " must be after the current time " + num(t_));
     newton_.invalidate();  // every stage starts with a fresh Jacobian
     precision_warned_ = false;
-    h_largest_ = 0;
+    watch_.start_stage();
     if (!started_) {
       zero_step();
     } else {
@@ -139,6 +139,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
           }
           notify();
         }
+        watch_accepted(h);
       } else {
         ++stats_.rejected_steps;
         if (++cut_in_stage == detail::undamped_massless_cuts && massless_count_ > 0 && detail::undamped(scheme_))
@@ -343,7 +344,6 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
       recommended_ = asm_.recommended_step();
       a_prev_ = s0_.a;
       h_prev_ = h;
-      h_largest_ = std::max(h_largest_, h);
       commit();
       if (!precision_warned_)  // once per stage (precision.hpp)
         if (auto l = detail::displacement_precision_loss(scheme_, asm_, s_, s0_, h, opt_, m_.scales())) {
@@ -372,7 +372,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   bool error_accepts(double h) {
     const error_test e =
         local_error_test(scheme_, asm_, s_, s0_, a_prev_, h_prev_, h, opt_, m_.scales(), this->error_skip(),
-                         this->constrained(), h >= roundoff_floor_drop * h_largest_);
+                         this->constrained(), h >= roundoff_floor_drop * watch_.largest());
     h_error_ = e.h_next;
     stats_.limiting_dof = e.worst;
     if (e.passed) {
@@ -413,7 +413,6 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   double h_nominal_ = 0;
   double h_error_ = 0;
   double h_prev_ = 0;
-  double h_largest_ = 0;  // the largest step accepted in this stage (roundoff_floor_drop)
   Eigen::VectorXd a_prev_;
   Eigen::VectorXd p_start_;  // p at the step's start before pseudo_acceleration_shift
   int successes_ = 0;

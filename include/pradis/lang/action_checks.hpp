@@ -106,7 +106,7 @@ class action_checker : public model_builder {
                                                 "DRLTU", "DABSI", "DRLTI", "ITR",     "SECOND",  "BETA",
                                                 "GAMMA", "ALPHA", "RHOINF", "DABSX",  "DRLTX",   "CONTROL",
                                                 "PREDICT", "SAVE",  "OPTIM",   "MAXORD", "LQBAND",  "INDEX2",
-                                                "TURN",  "TURNMAX", "RATES", "REFORM"};
+                                                "TURN",  "TURNMAX", "RATES", "REFORM", "NSTEPMAX"};
     for (const auto& g : c.args)
       for (const auto& it : g) {
         if (it.what != ast::item::kind::keyed)
@@ -122,14 +122,14 @@ class action_checker : public model_builder {
             if (owner_of_key(q) == c.program) own += std::string(" ") + q;
           fail(it.loc, "key " + k + " of " + c.program +
                            " is not implemented by pradis yet (implemented: END OUT SMAX SMIN IGNORE DABSU DRLTU DABSI "
-                           "DRLTI ITR SECOND DABSX DRLTX CONTROL PREDICT SAVE OPTIM" +
+                           "DRLTI ITR SECOND DABSX DRLTX CONTROL PREDICT SAVE OPTIM NSTEPMAX" +
                            own + ")");
         }
         if (c.program == "BDF")
           for (const char* no : {"DABSU", "DRLTU", "DABSI", "DRLTI", "SECOND", "PREDICT"})
             if (k == no)
               fail(it.loc, "key " + k + " does not apply to BDF (its Newton and error tests are weighted by DRLTX and "
-                           "DABSX; keys of BDF: END OUT SMAX SMIN IGNORE DRLTX DABSX CONTROL ITR SAVE OPTIM MAXORD "
+                           "DABSX; keys of BDF: END OUT SMAX SMIN IGNORE DRLTX DABSX CONTROL ITR SAVE OPTIM NSTEPMAX MAXORD "
                            "LQBAND INDEX2 TURN TURNMAX RATES)");
         const std::string owner = owner_of_key(k);
         if (!owner.empty() && owner != c.program)
@@ -160,6 +160,8 @@ class action_checker : public model_builder {
           s.opt.newton.drlti = scalar(v, "DRLTI");
         else if (k == "ITR")
           s.opt.newton.itr = whole(v, "ITR", 1, 1000);
+        else if (k == "NSTEPMAX")
+          s.opt.max_steps = whole(v, "NSTEPMAX", 0, 2000000000);
         else if (k == "DABSX") {
           s.opt.dabsx = scalar(v, "DABSX");
           s.opt.error_control = true;

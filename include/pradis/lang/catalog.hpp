@@ -89,14 +89,16 @@ inline std::string_view common_run_keys() {
          "DRLTI - Newton: relative tolerance on the residual per DOF (0.001)\n"
          "ITR - Newton: maximum iterations per step (5)\n"
          "SECOND - 1: force at least a second Newton iteration (0)\n"
-         "DABSX - error control: absolute tolerance of the local error, velocity units (0.1); "
+         "DABSX - error control: absolute tolerance of the local error, velocity units (DRLTX); "
          "giving DABSX, DRLTX, CONTROL or PREDICT turns error control on\n"
          "DRLTX - error control: relative tolerance of the local error (0.001)\n"
          "CONTROL - error control: no error-driven step reduction below this step (0)\n"
          "PREDICT - error control: 1 = linear prediction of the acceleration in the estimate (0)\n"
          "SAVE - write a checkpoint <stem>.t<time>.chk at every multiple of SAVE in the stage (none)\n"
          "OPTIM - ordering of the sparse elimination: 0 natural, 1 row count, 2 initial fill, 3 minimum degree, "
-         "4 minimum fill (by model size)\n";
+         "4 minimum fill (by model size)\n"
+         "NSTEPMAX - the most steps the stage may accept; reached before END, the run stops with error 142 and "
+         "keeps its rows (0: no limit) (0)\n";
 }
 
 /// Keys of PRADIS integration programs that pradis does not implement yet.

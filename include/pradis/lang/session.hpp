@@ -272,6 +272,23 @@ class session : public action_checker, public stage_drivers<session> {
                             ": checkpoint times k SAVE need k <= 1e11");
   }
 
+  /// Runs one piece of a stage cut at the checkpoint times (SAVE) with the options o. The
+  /// stage's NSTEPMAX budget, max_steps, counts its steps since the statistics showed `steps0`;
+  /// `end` is the stage's END.
+  void run_piece(run_options o, double end, long max_steps, long steps0) {
+    if (max_steps > 0) {
+      const long used = visit([](const auto& s) { return s.statistics().steps; }) - steps0;
+      if (used >= max_steps) throw pradis::detail::step_budget_error(max_steps, time_now(), end, {});
+      o.max_steps = max_steps - used;
+    }
+    try {
+      visit([&](auto& s) { (void)s.run(o); });
+    } catch (const pradis::error& e) {
+      if (e.code() != error_code::step_budget || max_steps <= 0) throw;
+      throw pradis::detail::step_budget_error(max_steps, time_now(), end, {});  // the stage's budget, not the piece's
+    }
+  }
+
   /// Runs one stage; with SAVE, in pieces that end at the checkpoint times.
   void run_stage(const ast::call& c) {
     const stage_spec st = stage_options(c);  // again: $REPLACE may have changed $DATA values
@@ -308,7 +325,7 @@ class session : public action_checker, public stage_drivers<session> {
           const bool last = !(next < st.opt.end - tol);
           run_options o = st.opt;
           if (!last) o.end = next;
-          visit([&](auto& s) { (void)s.run(o); });
+          run_piece(o, st.opt.end, st.opt.max_steps, before.steps);
           started_ = true;
           if (!last || std::abs(next - st.opt.end) <= tol) write_interval_checkpoint(c);
           if (last) break;

@@ -1,0 +1,104 @@
+#pragma once
+/// \file
+/// What both drivers (simulation, bdf_simulation) watch over the accepted steps of a
+/// stage: the stage's largest accepted step, the crawl warning and the step budget
+/// (run_options::max_steps, the language's NSTEPMAX).
+///
+/// A run crawls when a singular state of the model holds its step far below the steps
+/// the stage has taken, with no error raised: each step passes, but the stage's end
+/// recedes by millions of steps. An example: a massless DOF held only by a LINKD link,
+/// whose force on it vanishes on the branch where the link has its free length, made
+/// SHTERM take steps of about 4e-8 s after steps of 1e-4 s (20 s of CPU for 0.24 s of
+/// a 1 s stage). The crawl warning names the time, the step and, under error control,
+/// the DOF whose local error sets the step; NSTEPMAX ends such a stage with code 142.
+
+#include <cmath>
+#include <string>
+
+#include "pradis/core/error.hpp"
+#include "pradis/integrators/options.hpp"
+
+namespace pradis {
+
+/// The crawl warning is written when crawl_steps accepted steps in a row advanced the time by
+/// less than crawl_drop times as much as as many steps of the stage's largest accepted step
+/// would: their mean step is below crawl_drop of the largest. (The mean, not each step: a step
+/// that Newton failures cut and that then grows again saws up and down while it crawls.)
+inline constexpr long crawl_steps = 10000;
+/// See crawl_steps.
+inline constexpr double crawl_drop = 1e-3;
+
+namespace detail {
+
+/// The error (code 142) for a stage that used up NSTEPMAX = max_steps accepted steps at time t
+/// before `end`; `steps` (may be empty) describes its steps.
+inline error step_budget_error(long max_steps, double t, double end, const std::string& steps) {
+  return error(error_code::step_budget, "the stage used up its NSTEPMAX = " + std::to_string(max_steps) +
+                                            " accepted steps at t = " + num(t) + ", before END = " + num(end) +
+                                            (steps.empty() ? std::string() : " (" + steps + ")") +
+                                            "; the results up to t stand");
+}
+
+/// The accepted steps of one stage: its largest step, its windows of crawl_steps steps
+/// and the stage's step count against run_options::max_steps.
+class step_watch {
+ public:
+  /// Starts a stage.
+  void start_stage() noexcept { *this = step_watch{}; }
+
+  /// Records an accepted step of size h that ended at time t.
+  void accepted(double h, double t) noexcept {
+    ++steps_;
+    if (h > largest_) largest_ = h;
+    if (window_ == 0) t_window_ = t - h;
+    if (++window_ == crawl_steps) {
+      crawled_ = crawled_ || t - t_window_ < crawl_drop * static_cast<double>(crawl_steps) * largest_;
+      window_ = 0;
+    }
+  }
+
+  /// The largest step accepted in this stage (0 before the first).
+  double largest() const noexcept { return largest_; }
+  /// Steps accepted in this stage.
+  long steps() const noexcept { return steps_; }
+
+  /// True once per stage: after the first window of crawl_steps steps that crawled.
+  bool crawl_to_report() noexcept {
+    if (warned_ || !crawled_) return false;
+    warned_ = true;
+    return true;
+  }
+
+  /// The crawl warning at time t, last step h, stage end `end`; `why` says what set the
+  /// step (an element's recommendation, the DOF whose local error; empty when unknown).
+  std::string crawl_text(double t, double h, double end, const std::string& why) const {
+    const double more = h > 0 ? std::round((end - t) / h) : 0;
+    return "warning: the run crawls: the last " + std::to_string(crawl_steps) +
+           " accepted steps were on average below " + num(crawl_drop) + " of the stage's largest step " +
+           num(largest_) + " (now h = " + num(h) +
+           " at t = " + num(t) + "; at this step the stage needs about " + num(more) + " more steps to END = " +
+           num(end) + ")" +
+           (why.empty() ? std::string() : "; " + why) +
+           ". A singular state of the model usually causes this (a massless DOF whose force vanishes, a switch "
+           "that chatters); NSTEPMAX (run_options::max_steps) ends a stage after that many steps";
+  }
+
+  /// Whether the stage has used up its budget of `max_steps` accepted steps (0: none).
+  bool budget_spent(long max_steps) const noexcept { return max_steps > 0 && steps_ >= max_steps; }
+
+  /// The error for a stage that used up NSTEPMAX = max_steps steps at time t before `end`,
+  /// with the last step h.
+  error budget_error(long max_steps, double t, double h, double end) const {
+    return step_budget_error(max_steps, t, end, "last step " + num(h) + ", the stage's largest " + num(largest_));
+  }
+
+ private:
+  double largest_ = 0;
+  long steps_ = 0;
+  double t_window_ = 0;  // the time at the start of the current window of crawl_steps steps
+  long window_ = 0;      // steps in it so far
+  bool crawled_ = false, warned_ = false;
+};
+
+}  // namespace detail
+}  // namespace pradis

@@ -1,0 +1,209 @@
+// The step budget of a stage (run_options::max_steps, NSTEPMAX; error code 142)
+// and the crawl warning (integrators/step_watch.hpp), in both drivers.
+// Invariants: a stage stopped by its budget keeps the state it reached, so that a
+// next stage continues from there exactly as one uninterrupted run of the same
+// fixed steps; a stage whose step budget equals the steps it needs ends normally.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "integrator_test_support.hpp"
+#include "pradis/elements/library.hpp"
+#include "pradis/integrators/bdf/bdf_simulation.hpp"
+#include "pradis/integrators/newmark.hpp"
+#include "pradis/integrators/simulation.hpp"
+
+using namespace pradis;
+using namespace pradis::elements;
+using pradis_test::tight_newton;
+
+namespace {
+
+/// Recommends the step h (STEPMD) from the time t_on on; no flow. It stands for a
+/// singular state that holds the step far below the stage's steps.
+struct late_step_limit {
+  static constexpr pradis::passport passport{.name = "LATESTEP", .ext = 1, .par = 2, .adr = 1, .ign = 23};
+  static constexpr pradis::element_help help{.title = "test: recommends a small step from a time on",
+                                             .name = "Test element recommending a maximum step from t_on on",
+                                             .field = "tests",
+                                             .dofs = "1 - any DOF",
+                                             .parameters = "1 - t_on [s]\n2 - recommended step [s]",
+                                             .work = "",
+                                             .special = "none"};
+  struct parameters {
+    double t_on = 0, h = 0;
+  };
+  parameters p;
+  explicit late_step_limit(parameters q) : p(q) {}
+  static late_step_limit from_parameters(std::span<const double> v) { return late_step_limit({v[0], v[1]}); }
+  void evaluate(const pradis::local_input<late_step_limit>&, pradis::local_output<late_step_limit>& out,
+                pradis::element_context& ctx) const {
+    if (ctx.time >= p.t_on) ctx.recommend_step(p.h);
+    if (out.want_jacobian) out.K(0, 0) = 0.0;
+  }
+};
+
+using watch_model = model<point_mass, linear_spring, linear_damper, initial_displacement, late_step_limit>;
+
+/// Damped oscillator m = 1, k = 4 pi^2, c = 0.3, u(0) = 1; with `limit`, a late_step_limit
+/// recommending 1e-7 s from t = 0.05 s on.
+struct oscillator {
+  watch_model m;
+  dof x;
+  explicit oscillator(bool limit = false) {
+    x = m.add_dof("x");
+    m.add<point_mass>("mass", {1.0}, x);
+    m.add<linear_spring>("spring", {4.0 * std::numbers::pi * std::numbers::pi}, x, m.ground());
+    m.add<linear_damper>("damper", {0.3}, x, m.ground());
+    m.add<initial_displacement>("x0", {1.0}, x);
+    if (limit) m.add<late_step_limit>("limit", {0.05, 1e-7}, x);
+  }
+};
+
+run_options fixed(double end, long max_steps) {
+  run_options o;
+  o.end = end;
+  o.smax = 0.01;
+  o.newton = tight_newton(1e-10, 1e-12);
+  o.max_steps = max_steps;
+  return o;
+}
+
+/// Runs `f` and returns the pradis::error it throws (its code is checked by the caller).
+template <class F>
+error thrown_by(F&& f) {
+  try {
+    f();
+  } catch (const error& e) {
+    return e;
+  }
+  FAIL("no pradis::error was thrown");
+  return error(error_code::invalid_model, "unreachable");
+}
+
+}  // namespace
+
+TEST_SUITE("integrators/step_watch") {
+  TEST_CASE("NSTEPMAX: a stage that reaches its step budget before END ends with code 142 where it is") {
+    oscillator a, b;
+    simulation sa(a.m, newmark{}), sb(b.m, newmark{});
+    std::vector<double> out_t;
+    sa.on_output([&](const auto& s) { out_t.push_back(s.time()); });
+    const error e = thrown_by([&] { sa.run(fixed(1.0, 30)); });
+    CHECK(e.code() == error_code::step_budget);
+    CHECK(static_cast<int>(e.code()) == 142);
+    INFO(e.what());
+    CHECK(std::string(e.what()).find("the stage used up its NSTEPMAX = 30 accepted steps at t = 0.3") !=
+          std::string::npos);
+    CHECK(std::string(e.what()).find("before END = 1") != std::string::npos);
+    CHECK(sa.time() == doctest::Approx(0.3).epsilon(1e-12));
+    CHECK(sa.statistics().steps == 30);
+    // The output of the last accepted step was written before the stop.
+    REQUIRE(!out_t.empty());
+    CHECK(out_t.back() == doctest::Approx(0.3).epsilon(1e-12));
+
+    // A next stage goes on from t = 0.3; with the same fixed steps it ends where one run ends.
+    sa.run(fixed(1.0, 0));
+    sb.run(fixed(1.0, 0));
+    CHECK(sa.time() == 1.0);
+    CHECK(sa.statistics().steps == sb.statistics().steps);
+    CHECK(std::abs(sa.u(a.x) - sb.u(b.x)) < 1e-12);
+    CHECK(std::abs(sa.v(a.x) - sb.v(b.x)) < 1e-12);
+  }
+
+  TEST_CASE("NSTEPMAX equal to the steps a stage needs ends the stage normally") {
+    oscillator a;
+    simulation sa(a.m, newmark{});
+    const run_statistics st = sa.run(fixed(1.0, 100));
+    CHECK(st.steps == 100);
+    CHECK(sa.time() == 1.0);
+  }
+
+  TEST_CASE("NSTEPMAX under BDF: code 142 after the budget, the stage's time kept") {
+    oscillator a;
+    bdf_simulation sa(a.m);
+    run_options o = fixed(1.0, 25);
+    o.drltx = 1e-8;
+    const error e = thrown_by([&] { sa.run(o); });
+    CHECK(e.code() == error_code::step_budget);
+    CHECK(sa.statistics().steps == 25);
+    CHECK(sa.time() > 0.0);
+    CHECK(sa.time() < 1.0);
+    // The next stage finishes from there; the displacement against the exact damped
+    // oscillation u = e^(-zeta w t) (cos wd t + zeta w / wd sin wd t) at t = 1.
+    o.max_steps = 0;
+    sa.run(o);
+    const double w = 2 * std::numbers::pi, zw = 0.15, wd = std::sqrt(w * w - zw * zw);
+    const double exact = std::exp(-zw) * (std::cos(wd) + zw / wd * std::sin(wd));
+    CHECK(std::abs(sa.u(a.x) - exact) < 1e-6);
+  }
+
+  TEST_CASE("NSTEPMAX < 0 is refused by both drivers") {
+    oscillator a, b;
+    simulation sa(a.m, newmark{});
+    bdf_simulation sb(b.m);
+    for (const error& e : {thrown_by([&] { sa.run(fixed(1.0, -1)); }), thrown_by([&] { sb.run(fixed(1.0, -1)); })}) {
+      CHECK(e.code() == error_code::invalid_option);
+      CHECK(std::string(e.what()).find("NSTEPMAX = -1 must be >= 0 (0: no limit)") != std::string::npos);
+    }
+  }
+
+  TEST_CASE("crawl warning: once per stage, after a window of 10,000 steps whose mean is below 1e-3 of the largest") {
+    // Steps of up to SMAX = 0.01 s until t = 0.05 s, then steps of 1e-7 s that an element
+    // recommends: the warning comes at the end of the first or second window of 10,000 steps
+    // (the first holds the steps before t = 0.05 s too), the budget stops the stage at 25,000.
+    for (const bool bdf : {false, true}) {
+      CAPTURE(bdf);
+      oscillator a(true);
+      std::ostringstream log;
+      run_options o = fixed(1.0, 25000);
+      o.drltx = 1e-6;
+      error e(error_code::invalid_model, "");
+      double t_end = 0;
+      if (bdf) {
+        bdf_simulation s(a.m);
+        s.log().to(log);
+        e = thrown_by([&] { s.run(o); });
+        t_end = s.time();
+      } else {
+        simulation s(a.m, newmark{});
+        s.log().to(log);
+        e = thrown_by([&] { s.run(o); });
+        t_end = s.time();
+      }
+      CHECK(e.code() == error_code::step_budget);
+      const std::string text = log.str();
+      INFO(text);
+      const auto first = text.find("warning: the run crawls: the last 10000 accepted steps were on average below "
+                                   "0.001 of the stage's largest step");
+      REQUIRE(first != std::string::npos);
+      CHECK(text.find("the run crawls", first + 20) == std::string::npos);  // once per stage
+      const std::string at = "(now h = 1e-07 at t = ";
+      const auto where = text.find(at, first);
+      REQUIRE(where != std::string::npos);
+      const double t_warn = std::stod(text.substr(where + at.size()));
+      CHECK(t_warn >= 0.05);
+      CHECK(t_warn <= 0.06 + 2e-3);
+      // The stage's 25,000 steps include those before the crawl.
+      CHECK(t_end > t_warn);
+      CHECK(t_end < t_warn + 25000 * 1e-7);
+      CHECK(text.find("an element's recommended step (STEPMD) 1e-07 sets the step") != std::string::npos);
+      CHECK(text.find("NSTEPMAX") != std::string::npos);
+    }
+  }
+
+  TEST_CASE("no crawl warning where the steps stay within 1e-3 of the stage's largest") {
+    oscillator a;
+    std::ostringstream log;
+    simulation s(a.m, newmark{});
+    s.log().to(log);
+    run_options o = fixed(200.0, 0);  // 20,000 steps of SMAX
+    s.run(o);
+    CHECK(log.str().find("crawls") == std::string::npos);
+  }
+}
