@@ -1,9 +1,11 @@
 // NSTEPMAX, the step budget of a stage in the model language (run_options::max_steps,
 // error 142): the stop at the stage's line with the time reached, the rows computed
 // before it kept, the budget counted over the whole stage when SAVE cuts it into
-// pieces, and bad values located at the key.
+// pieces, and bad values located at the key. The drivers' warnings (among them the
+// crawl warning, integrators/step_watch.hpp) reach the session's report lines.
 
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "lang_test_support.hpp"
@@ -79,5 +81,68 @@ TEST_SUITE("lang/step_budget") {
       expect_error(with_stage(std::string("Calc 'SHTERM (END=0.1, SMAX=1E-3, NSTEPMAX=") + bad + ")"), "14:46",
                    {"NSTEPMAX must be a whole number from 0 to 2000000000, got"});
     }
+  }
+
+  TEST_CASE("the drivers' warnings reach the session's report lines; a run's error is reported once, located") {
+    // Error control at DRLTX = 0.1 on the mass on a spring: SMAX decides the steps
+    // (integrators/precision.hpp, smax_warning_text).
+    std::ostringstream log;
+    auto s = lang_test::build(with_stage("Calc 'NEWMARK (END=0.1, SMAX=1E-3, DRLTX=0.1)"));
+    s->run({.write_files = false, .log = &log});
+    CAPTURE(log.str());
+    CHECK(log.str().find("warning: error control: ") != std::string::npos);
+    CHECK(log.str().find(" steps were SMAX = 0.001: the local error stayed below") != std::string::npos);
+    CHECK(log.str().find("stage 1 'Calc' NEWMARK: t = 0 .. 0.1") != std::string::npos);
+    // A note names the stage's program (examples/models/source_bench.prd: a source's current is
+    // a multiplier, and NEWMARK does not damp it).
+    std::ostringstream log3;
+    auto b = lang_test::build(lang_test::slurp(lang_test::models_dir() / "source_bench.prd"));
+    b->run({.write_files = false, .log = &log3});
+    CHECK(log3.str().find("note: the model has constraint equations (Lagrange multipliers, e.g. LINKX, SPH3X, VDC2) "
+                          "and NEWMARK has no numerical damping") != std::string::npos);
+    // The budget's error is the session's located error, not also a line of the log.
+    std::ostringstream log2;
+    auto f = lang_test::build(with_stage("Calc 'SHTERM (END=0.1, SMAX=1E-3, NSTEPMAX=20)"));
+    CHECK_THROWS_AS(f->run({.write_files = false, .log = &log2}), lang::lang_error);
+    CHECK(log2.str().find("pradis error") == std::string::npos);
+  }
+
+  TEST_CASE("a run that crawls: the warning names it, NSTEPMAX ends it (two_bodies.prd with body 2 on DOFs 1 5 6)") {
+    // The fuzz find: body 2's MD on DOFs (1, 5, 6) instead of (4, 5, 6) leaves DOF 4 massless,
+    // held only by the LINKD link, whose force on it vanishes where the link has its free
+    // length. At t = 0.14 s SHTERM's steps fall from SMAX = 1e-4 s to below 1e-7 s; without
+    // a budget it reached t = 0.26 s of its 1 s stage after 120 s.
+    std::string text = lang_test::slurp(lang_test::models_dir() / "two_bodies.prd");
+    const auto body = text.find("'MD (4 5 6;");
+    REQUIRE(body != std::string::npos);
+    text.replace(body, 11, "'MD (1 5 6;");
+    const auto opts = text.find("DRLTI=1E-8)");
+    REQUIRE(opts != std::string::npos);
+    text.replace(opts, 11, "DRLTI=1E-8, NSTEPMAX=40000)");
+    std::ostringstream log;
+    auto s = lang_test::build(text);
+    std::string e;
+    try {
+      s->run({.write_files = false, .log = &log});
+    } catch (const lang::lang_error& x) {
+      e = x.what();
+    }
+    CAPTURE(e);
+    CAPTURE(log.str());
+    CHECK(e.find("the stage used up its NSTEPMAX = 40000 accepted steps at t = 0.14") != std::string::npos);
+    CHECK(e.find("(pradis error 142, step budget used up)") != std::string::npos);
+    const std::string& l = log.str();
+    const std::string head =
+        "warning: the run crawls: the last 10000 accepted steps were on average below 0.001 of the stage's largest "
+        "step 0.0001 (now h = ";
+    const auto w = l.find(head);
+    REQUIRE(w != std::string::npos);
+    const double h = std::stod(l.substr(w + head.size()));
+    CHECK(h < 1e-7);
+    CHECK(l.find("failed steps (Newton, singular situations) cut the step: ", w) != std::string::npos);
+    // The rows up to the stop are kept (OUT = 0.005: the last one at t = 0.145).
+    const io::table& t = s->results();
+    REQUIRE(t.rows() >= 2);
+    CHECK(t.at(t.rows() - 1, 0) == doctest::Approx(0.145).epsilon(1e-12));
   }
 }

@@ -5,6 +5,7 @@
 /// stream or a file, or leaves it silent (the default).
 
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -19,13 +20,20 @@ class diagnostics {
  public:
   /// Sends messages to `os` (which must outlive this object).
   void to(std::ostream& os) {
-    file_.reset();
+    silence();
     os_ = &os;
+  }
+  /// Hands each message to `sink` (e.g. a model-language session, which shows the
+  /// warnings among its own report lines).
+  void to(std::function<void(std::string_view)> sink) {
+    silence();
+    sink_ = std::move(sink);
   }
   /// Sends messages to a file (created or truncated), e.g. "SYSPRINT.TXT".
   void to_file(const std::string& path) {
     auto f = std::make_unique<std::ofstream>(path);
     if (!*f) throw error(error_code::io_error, "cannot open diagnostics file '" + path + "'");
+    silence();
     os_ = f.get();
     file_ = std::move(f);
   }
@@ -33,6 +41,7 @@ class diagnostics {
   void silence() {
     file_.reset();
     os_ = nullptr;
+    sink_ = nullptr;
   }
   /// Writes one line, unless silent.
   void write(std::string_view line) {
@@ -40,15 +49,17 @@ class diagnostics {
       *os_ << line << '\n';
       os_->flush();
     }
+    if (sink_) sink_(line);
   }
   /// Writes the text of an error.
   void write(const error& e) { write(std::string_view(e.what())); }
   /// Whether messages go anywhere.
-  bool active() const noexcept { return os_ != nullptr; }
+  bool active() const noexcept { return os_ != nullptr || sink_ != nullptr; }
 
  private:
   std::ostream* os_ = nullptr;
   std::unique_ptr<std::ofstream> file_;
+  std::function<void(std::string_view)> sink_;
 };
 
 }  // namespace pradis

@@ -293,6 +293,9 @@ class driver_core {
         why = "an element's recommended step (STEPMD) " + num(recommended_) + " sets the step";
       else if (opt_.error_control && stats_.limiting_dof >= 0)
         why = "the local error of DOF '" + m_.dof_name(stats_.limiting_dof) + "' sets the step";
+      else if (!opt_.error_control)
+        why = "failed steps (Newton, singular situations) cut the step: " + std::to_string(stats_.rejected_steps) +
+              " so far in the run";
       log_.write(watch_.crawl_text(t_, h, opt_.end, why));
     }
     if (watch_.budget_spent(opt_.max_steps) && t_ < opt_.end * (1 - 1e-14) - 1e-300)

@@ -87,6 +87,25 @@ class stage_drivers {
     bdf_active_ = true;
   }
 
+  /// Runs one piece of a stage cut at the checkpoint times (SAVE) with the options o. The
+  /// stage's NSTEPMAX budget, max_steps, counts its steps since the statistics showed `steps0`;
+  /// `end` is the stage's END.
+  void run_piece(run_options o, double end, long max_steps, long steps0) {
+    const double now = visit([](const auto& s) { return s.time(); });
+    if (max_steps > 0) {
+      const long used = visit([](const auto& s) { return s.statistics().steps; }) - steps0;
+      if (used >= max_steps) throw pradis::detail::step_budget_error(max_steps, now, end, {});
+      o.max_steps = max_steps - used;
+    }
+    try {
+      visit([&](auto& s) { (void)s.run(o); });
+    } catch (const pradis::error& e) {
+      if (e.code() != error_code::step_budget || max_steps <= 0) throw;
+      // The message names the stage's budget, not the piece's.
+      throw pradis::detail::step_budget_error(max_steps, visit([](const auto& s) { return s.time(); }), end, {});
+    }
+  }
+
   /// The record a session appends to a checkpoint: the last one-step scheme's
   /// four parameters and this tag at the very end (a checkpoint of the library has none).
   static constexpr char scheme_tag[8] = {'P', 'R', 'L', 'A', 'N', 'G', '0', '1'};

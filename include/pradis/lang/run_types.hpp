@@ -27,7 +27,7 @@ struct run_settings {
   std::string stem = "model";    ///< prefix of the output files
   bool plot = true;              ///< false: 'DISP requests no PNG (session::plots() stays empty)
   bool write_files = true;       ///< false: no CSV and no SAVE-interval checkpoints (tests)
-  std::ostream* log = nullptr;   ///< report lines (stages, files written), or none
+  std::ostream* log = nullptr;   ///< report lines (stages, files written, the integrators' warnings and notes), or none
   /// A one-line progress display redrawn in place while a stage runs (for a
   /// terminal: `pradis run` passes stderr when it is one), or none.
   std::ostream* progress = nullptr;
@@ -68,7 +68,7 @@ class interrupted : public std::runtime_error {
 /// so a stage computes exactly what the library's scheme of the same name does.
 class stage_scheme : public alpha_scheme {
  public:
-  /// Prefix of the simulation's option messages (the session replaces it by the program name).
+  /// The name of the scheme class (its messages carry label()).
   static constexpr std::string_view name = "STAGE";
   /// PRADIS's Stoermer scheme (SHTERM).
   stage_scheme() : stage_scheme(stoermer{}) {}
@@ -76,6 +76,14 @@ class stage_scheme : public alpha_scheme {
   explicit stage_scheme(const alpha_scheme& s) : stage_scheme(s.coefficients_set()) {}
   /// The scheme with parameters taken from one of the library's schemes (not checked again).
   explicit stage_scheme(const alpha_parameters& q) { p_ = q; }
+  /// The program these parameters are (SHTERM, NEWMARK, HHT or GALPHA), for the
+  /// simulation's messages and notes: SHTERM is Newmark's beta = 1/2, gamma = 1,
+  /// HHT has alpha_m = 0 and alpha_f != 0, GALPHA alpha_m != 0.
+  std::string_view label() const noexcept {
+    if (p_.alpha_m != 0) return "GALPHA";
+    if (p_.alpha_f != 0) return "HHT";
+    return p_.beta == 0.5 && p_.gamma == 1.0 ? "SHTERM" : "NEWMARK";
+  }
 };
 
 /// One output variable (#OUTPUT line).

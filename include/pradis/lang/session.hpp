@@ -216,6 +216,11 @@ class session : public action_checker, public stage_drivers<session> {
   /// Adds the session's observers to a driver that stage_drivers made.
   template <class Sim>
   void attach(Sim& s) {
+    // The driver's warnings and notes join the report lines; its errors (and the elements'
+    // messages of a failed step) do not: the session reports a run's error itself, located.
+    s.log().to([this](std::string_view line) {
+      if (line.rfind("pradis error ", 0) != 0) note(std::string(line));
+    });
     s.on_output([this](const Sim& x) {
       record(x);
       show_progress(x);  // also at t0, before the first step
@@ -240,9 +245,14 @@ class session : public action_checker, public stage_drivers<session> {
     std::string what = std::string(e.element_type());
     if (!e.instance().empty()) what += (what.empty() ? "'" : " '") + e.instance() + "'";
     std::string msg = e.message();
-    const std::string prefix = std::string(stage_scheme::name) + ": ";
-    if (e.code() == error_code::invalid_option && msg.rfind(prefix, 0) == 0)
-      msg = c.program + ": " + msg.substr(prefix.size());
+    // The one-step driver's option messages start with its scheme's label (stage_scheme::label()):
+    // name the program as written.
+    if (e.code() == error_code::invalid_option)
+      for (const char* p : {"SHTERM: ", "NEWMARK: ", "HHT: ", "GALPHA: "})
+        if (msg.rfind(p, 0) == 0) {
+          msg = c.program + ": " + msg.substr(std::strlen(p));
+          break;
+        }
     msg = (what.empty() ? "" : what + ": ") + msg + " (pradis error " + std::to_string(e.number()) + ", " +
           std::string(to_string(e.code())) + ")";
     if (!e.instance().empty())
@@ -270,23 +280,6 @@ class session : public action_checker, public stage_drivers<session> {
     if (st.opt.end / st.save > 1e11)
       fail(st.save_loc, "SAVE = " + num(st.save) + " is too small for END = " + num(st.opt.end) +
                             ": checkpoint times k SAVE need k <= 1e11");
-  }
-
-  /// Runs one piece of a stage cut at the checkpoint times (SAVE) with the options o. The
-  /// stage's NSTEPMAX budget, max_steps, counts its steps since the statistics showed `steps0`;
-  /// `end` is the stage's END.
-  void run_piece(run_options o, double end, long max_steps, long steps0) {
-    if (max_steps > 0) {
-      const long used = visit([](const auto& s) { return s.statistics().steps; }) - steps0;
-      if (used >= max_steps) throw pradis::detail::step_budget_error(max_steps, time_now(), end, {});
-      o.max_steps = max_steps - used;
-    }
-    try {
-      visit([&](auto& s) { (void)s.run(o); });
-    } catch (const pradis::error& e) {
-      if (e.code() != error_code::step_budget || max_steps <= 0) throw;
-      throw pradis::detail::step_budget_error(max_steps, time_now(), end, {});  // the stage's budget, not the piece's
-    }
   }
 
   /// Runs one stage; with SAVE, in pieces that end at the checkpoint times.
