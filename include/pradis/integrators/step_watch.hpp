@@ -9,8 +9,9 @@
 /// recedes by millions of steps. An example: a massless DOF held only by a LINKD link,
 /// whose force on it vanishes on the branch where the link has its free length, made
 /// SHTERM take steps of about 4e-8 s after steps of 1e-4 s (20 s of CPU for 0.24 s of
-/// a 1 s stage). The crawl warning names the time, the step and, under error control,
-/// the DOF whose local error sets the step; NSTEPMAX ends such a stage with code 142.
+/// a 1 s stage). The crawl warning names the time, the step and what sets it (an
+/// element's recommended step, the DOF whose local error, or failed steps); NSTEPMAX
+/// ends such a stage with code 142.
 
 #include <cmath>
 #include <string>

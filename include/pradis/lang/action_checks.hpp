@@ -129,8 +129,8 @@ class action_checker : public model_builder {
           for (const char* no : {"DABSU", "DRLTU", "DABSI", "DRLTI", "SECOND", "PREDICT"})
             if (k == no)
               fail(it.loc, "key " + k + " does not apply to BDF (its Newton and error tests are weighted by DRLTX and "
-                           "DABSX; keys of BDF: END OUT SMAX SMIN IGNORE DRLTX DABSX CONTROL ITR SAVE OPTIM NSTEPMAX MAXORD "
-                           "LQBAND INDEX2 TURN TURNMAX RATES)");
+                           "DABSX; keys of BDF: END OUT SMAX SMIN IGNORE DRLTX DABSX CONTROL ITR SAVE OPTIM NSTEPMAX "
+                           "MAXORD LQBAND INDEX2 TURN TURNMAX RATES)");
         const std::string owner = owner_of_key(k);
         if (!owner.empty() && owner != c.program)
           fail(it.loc, "key " + k + " belongs to " + owner + ", not to " + c.program +
