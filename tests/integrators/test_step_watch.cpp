@@ -52,10 +52,10 @@ using watch_model = model<point_mass, linear_spring, linear_damper, initial_disp
 
 /// Damped oscillator m = 1, k = 4 pi^2, c = 0.3, u(0) = 1; with `limit`, a late_step_limit
 /// recommending 1e-7 s from t = 0.05 s on.
-struct oscillator {
+struct watched_oscillator {
   watch_model m;
   dof x;
-  explicit oscillator(bool limit = false) {
+  explicit watched_oscillator(bool limit = false) {
     x = m.add_dof("x");
     m.add<point_mass>("mass", {1.0}, x);
     m.add<linear_spring>("spring", {4.0 * std::numbers::pi * std::numbers::pi}, x, m.ground());
@@ -65,7 +65,7 @@ struct oscillator {
   }
 };
 
-run_options fixed(double end, long max_steps) {
+run_options budget_stage(double end, long max_steps) {
   run_options o;
   o.end = end;
   o.smax = 0.01;
@@ -90,11 +90,11 @@ error thrown_by(F&& f) {
 
 TEST_SUITE("integrators/step_watch") {
   TEST_CASE("NSTEPMAX: a stage that reaches its step budget before END ends with code 142 where it is") {
-    oscillator a, b;
+    watched_oscillator a, b;
     simulation sa(a.m, newmark{}), sb(b.m, newmark{});
     std::vector<double> out_t;
     sa.on_output([&](const auto& s) { out_t.push_back(s.time()); });
-    const error e = thrown_by([&] { sa.run(fixed(1.0, 30)); });
+    const error e = thrown_by([&] { sa.run(budget_stage(1.0, 30)); });
     CHECK(e.code() == error_code::step_budget);
     CHECK(static_cast<int>(e.code()) == 142);
     INFO(e.what());
@@ -108,8 +108,8 @@ TEST_SUITE("integrators/step_watch") {
     CHECK(out_t.back() == doctest::Approx(0.3).epsilon(1e-12));
 
     // A next stage goes on from t = 0.3; with the same fixed steps it ends where one run ends.
-    sa.run(fixed(1.0, 0));
-    sb.run(fixed(1.0, 0));
+    sa.run(budget_stage(1.0, 0));
+    sb.run(budget_stage(1.0, 0));
     CHECK(sa.time() == 1.0);
     CHECK(sa.statistics().steps == sb.statistics().steps);
     CHECK(std::abs(sa.u(a.x) - sb.u(b.x)) < 1e-12);
@@ -117,17 +117,17 @@ TEST_SUITE("integrators/step_watch") {
   }
 
   TEST_CASE("NSTEPMAX equal to the steps a stage needs ends the stage normally") {
-    oscillator a;
+    watched_oscillator a;
     simulation sa(a.m, newmark{});
-    const run_statistics st = sa.run(fixed(1.0, 100));
+    const run_statistics st = sa.run(budget_stage(1.0, 100));
     CHECK(st.steps == 100);
     CHECK(sa.time() == 1.0);
   }
 
   TEST_CASE("NSTEPMAX under BDF: code 142 after the budget, the stage's time kept") {
-    oscillator a;
+    watched_oscillator a;
     bdf_simulation sa(a.m);
-    run_options o = fixed(1.0, 25);
+    run_options o = budget_stage(1.0, 25);
     o.drltx = 1e-8;
     const error e = thrown_by([&] { sa.run(o); });
     CHECK(e.code() == error_code::step_budget);
@@ -144,10 +144,11 @@ TEST_SUITE("integrators/step_watch") {
   }
 
   TEST_CASE("NSTEPMAX < 0 is refused by both drivers") {
-    oscillator a, b;
+    watched_oscillator a, b;
     simulation sa(a.m, newmark{});
     bdf_simulation sb(b.m);
-    for (const error& e : {thrown_by([&] { sa.run(fixed(1.0, -1)); }), thrown_by([&] { sb.run(fixed(1.0, -1)); })}) {
+    for (const error& e :
+         {thrown_by([&] { sa.run(budget_stage(1.0, -1)); }), thrown_by([&] { sb.run(budget_stage(1.0, -1)); })}) {
       CHECK(e.code() == error_code::invalid_option);
       CHECK(std::string(e.what()).find("NSTEPMAX = -1 must be >= 0 (0: no limit)") != std::string::npos);
     }
@@ -159,9 +160,9 @@ TEST_SUITE("integrators/step_watch") {
     // (the first holds the steps before t = 0.05 s too), the budget stops the stage at 25,000.
     for (const bool bdf : {false, true}) {
       CAPTURE(bdf);
-      oscillator a(true);
+      watched_oscillator a(true);
       std::ostringstream log;
-      run_options o = fixed(1.0, 25000);
+      run_options o = budget_stage(1.0, 25000);
       o.drltx = 1e-6;
       error e(error_code::invalid_model, "");
       double t_end = 0;
@@ -198,11 +199,11 @@ TEST_SUITE("integrators/step_watch") {
   }
 
   TEST_CASE("no crawl warning where the steps stay within 1e-3 of the stage's largest") {
-    oscillator a;
+    watched_oscillator a;
     std::ostringstream log;
     simulation s(a.m, newmark{});
     s.log().to(log);
-    run_options o = fixed(200.0, 0);  // 20,000 steps of SMAX
+    run_options o = budget_stage(200.0, 0);  // 20,000 steps of SMAX
     s.run(o);
     CHECK(log.str().find("crawls") == std::string::npos);
   }
