@@ -51,17 +51,17 @@ struct late_step_limit {
 using watch_model = model<point_mass, linear_spring, linear_damper, initial_displacement, late_step_limit>;
 
 /// Damped oscillator m = 1, k = 4 pi^2, c = 0.3, u(0) = 1; with `limit`, a late_step_limit
-/// recommending 1e-7 s from t = 0.05 s on.
+/// recommending h_limit (1e-7 s) from t_on (0.05 s) on.
 struct watched_oscillator {
   watch_model m;
   dof x;
-  explicit watched_oscillator(bool limit = false) {
+  explicit watched_oscillator(bool limit = false, double t_on = 0.05, double h_limit = 1e-7) {
     x = m.add_dof("x");
     m.add<point_mass>("mass", {1.0}, x);
     m.add<linear_spring>("spring", {4.0 * std::numbers::pi * std::numbers::pi}, x, m.ground());
     m.add<linear_damper>("damper", {0.3}, x, m.ground());
     m.add<initial_displacement>("x0", {1.0}, x);
-    if (limit) m.add<late_step_limit>("limit", {0.05, 1e-7}, x);
+    if (limit) m.add<late_step_limit>("limit", {t_on, h_limit}, x);
   }
 };
 
@@ -196,6 +196,60 @@ TEST_SUITE("integrators/step_watch") {
       CHECK(text.find("an element's recommended step (STEPMD) 1e-07 sets the step") != std::string::npos);
       CHECK(text.find("NSTEPMAX") != std::string::npos);
     }
+  }
+
+  TEST_CASE("crawl warning: a stage held at SMIN from its start, by a recommended step below SMIN") {
+    // An element recommends 1e-13 s from t = 0, below SMIN = 1e-9 s: every step is SMIN, the
+    // stage's largest too, so only the floor criterion (mean below 2 SMIN, SMIN <= 1e-3 SMAX)
+    // sees it. Found by mutating a model file: XSRC at 1e30 Hz held NEWMARK at SMIN = 1e-11 s
+    // for 6 million steps without a line.
+    for (const bool bdf : {false, true}) {
+      CAPTURE(bdf);
+      watched_oscillator a(true, 0.0, 1e-13);
+      std::ostringstream log;
+      run_options o = budget_stage(1.0, 12000);
+      o.smin = 1e-9;
+      o.drltx = 1e-6;
+      error e(error_code::invalid_model, "");
+      double t_end = 0;
+      if (bdf) {
+        bdf_simulation s(a.m);
+        s.log().to(log);
+        e = thrown_by([&] { s.run(o); });
+        t_end = s.time();
+      } else {
+        simulation s(a.m, newmark{});
+        s.log().to(log);
+        e = thrown_by([&] { s.run(o); });
+        t_end = s.time();
+      }
+      CHECK(e.code() == error_code::step_budget);
+      CHECK(t_end == doctest::Approx(12000 * 1e-9).epsilon(1e-6));
+      const std::string text = log.str();
+      INFO(text);
+      const auto first = text.find("warning: the run crawls: the last 10000 accepted steps were held at SMIN = "
+                                   "1e-09 (on average below twice it; SMAX = 0.01) (now h = 1e-09 at t = ");
+      REQUIRE(first != std::string::npos);
+      CHECK(text.find("the run crawls", first + 20) == std::string::npos);
+      CHECK(text.find("the stage needs about 999990000 more steps") != std::string::npos);
+      CHECK(text.find("an element's recommended step (STEPMD) 1e-13 sets the step") != std::string::npos);
+      CHECK(text.find("An element that recommends a step below SMIN") != std::string::npos);
+    }
+  }
+
+  TEST_CASE("no crawl warning at SMIN when SMIN is not 1e-3 of SMAX or less, nor at SMAX") {
+    // The same element, with SMIN = 2e-6 s and SMAX = 1e-3 s: the steps stay at SMIN, but
+    // SMAX / SMIN = 500 is no 1000-fold drop; no warning.
+    watched_oscillator a(true, 0.0, 1e-13);
+    std::ostringstream log;
+    simulation s(a.m, newmark{});
+    s.log().to(log);
+    run_options o = budget_stage(0.024, 0);  // 12,000 steps of SMIN
+    o.smin = 2e-6;
+    o.smax = 1e-3;
+    s.run(o);
+    CHECK(s.statistics().steps >= 12000);
+    CHECK(log.str().find("crawls") == std::string::npos);
   }
 
   TEST_CASE("no crawl warning where the steps stay within 1e-3 of the stage's largest") {

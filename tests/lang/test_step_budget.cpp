@@ -145,4 +145,66 @@ TEST_SUITE("lang/step_budget") {
     REQUIRE(t.rows() >= 2);
     CHECK(t.at(t.rows() - 1, 0) == doctest::Approx(0.145).epsilon(1e-12));
   }
+
+  TEST_CASE("a run held at SMIN by a source of 1e30 Hz: the warning names the step and its cause") {
+    // The fuzz find: eccentric_shaker.prd with its guide's XSRC at f = 1e30 Hz (parameters
+    // 0, 1e30, 0, -2). The source recommends T / 20 = 5e-32 s, NEWMARK takes SMIN = 1e-11 s
+    // from the start, and so the stage's largest step is SMIN too; before the floor
+    // criterion of step_watch, 6 million steps passed without a line.
+    std::string text = lang_test::slurp(lang_test::models_dir() / "eccentric_shaker.prd");
+    const auto guide = text.find("Guide = 0, 0, 0, 0");
+    REQUIRE(guide != std::string::npos);
+    text.replace(guide, 18, "Guide = 0, 1e30, 0, -2");
+    const auto opts = text.find("ITR=20,");
+    REQUIRE(opts != std::string::npos);
+    text.replace(opts, 7, "ITR=20, NSTEPMAX=10500,");
+    std::ostringstream log;
+    auto s = lang_test::build(text);
+    std::string e;
+    try {
+      s->run({.write_files = false, .log = &log});
+    } catch (const lang::lang_error& x) {
+      e = x.what();
+    }
+    CAPTURE(e);
+    CAPTURE(log.str());
+    CHECK(e.find("the stage used up its NSTEPMAX = 10500 accepted steps at t = 1.05e-07") != std::string::npos);
+    const std::string& l = log.str();
+    CHECK(l.find("warning: the run crawls: the last 10000 accepted steps were held at SMIN = 1e-11 (on average "
+                 "below twice it; SMAX = 0.001) (now h = 1e-11 at t = 1e-07; at this step the stage needs about "
+                 "3.9999999e+11 more steps to END = 4); an element's recommended step (STEPMD) 5e-32 sets the step") !=
+          std::string::npos);
+  }
+
+  TEST_CASE("a crawl under error control from failed steps: the warning names them (spring_pendulum.prd without Mass X)") {
+    // The fuzz find: spring_pendulum.prd without its line 'Mass X'. DOF 1 is then massless,
+    // held only by the LINKD link; NEWMARK under error control has its steps cut by Newton
+    // failures and crawls from t = 0.17 s on. The error test limits no step there, so the
+    // warning names the failed steps (it used to name no cause).
+    std::string text = lang_test::slurp(lang_test::models_dir() / "spring_pendulum.prd");
+    const std::string mass_x = "    Mass X 'MASS (1; Mass)\n";
+    const auto line = text.find(mass_x);
+    REQUIRE(line != std::string::npos);
+    text.erase(line, mass_x.size());
+    const auto opts = text.find("GAMMA=0.5,");
+    REQUIRE(opts != std::string::npos);
+    text.replace(opts, 10, "GAMMA=0.5, NSTEPMAX=30000,");
+    std::ostringstream log;
+    auto s = lang_test::build(text);
+    std::string e;
+    try {
+      s->run({.write_files = false, .log = &log});
+    } catch (const lang::lang_error& x) {
+      e = x.what();
+    }
+    CAPTURE(e);
+    CAPTURE(log.str());
+    CHECK(e.find("the stage used up its NSTEPMAX = 30000 accepted steps at t = 0.1") != std::string::npos);
+    const std::string& l = log.str();
+    const auto w = l.find("warning: the run crawls: the last 10000 accepted steps were on average below 0.001 of the "
+                          "stage's largest step 0.001 (now h = ");
+    REQUIRE(w != std::string::npos);
+    CHECK(l.find("failed steps (Newton, singular situations) cut the step: ", w) != std::string::npos);
+    CHECK(l.find("NEWMARK has no numerical damping") != std::string::npos);
+  }
 }

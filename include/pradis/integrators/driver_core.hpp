@@ -293,7 +293,7 @@ class driver_core {
         why = "an element's recommended step (STEPMD) " + num(recommended_) + " sets the step";
       else if (opt_.error_control && stats_.limiting_dof >= 0)
         why = "the local error of DOF '" + m_.dof_name(stats_.limiting_dof) + "' sets the step";
-      else if (!opt_.error_control)
+      else if (stats_.rejected_steps > 0)
         why = "failed steps (Newton, singular situations) cut the step: " + std::to_string(stats_.rejected_steps) +
               " so far in the run";
       log_.write(watch_.crawl_text(t_, h, opt_.end, why));

@@ -90,7 +90,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     if (!(opt.end > t_)) fail_option("END = " + num(opt.end) + " must be after the current time " + num(t_));
     newton_.invalidate();  // every stage starts with a fresh Jacobian
     precision_warned_ = false;
-    watch_.start_stage();
+    watch_.start_stage(opt.smin, opt.smax);
     if (!started_) {
       zero_step();
     } else {

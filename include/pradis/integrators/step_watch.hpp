@@ -11,7 +11,10 @@
 /// SHTERM take steps of about 4e-8 s after steps of 1e-4 s (20 s of CPU for 0.24 s of
 /// a 1 s stage). The crawl warning names the time, the step and what sets it (an
 /// element's recommended step, the DOF whose local error, or failed steps); NSTEPMAX
-/// ends such a stage with code 142.
+/// ends such a stage with code 142. A stage held at SMIN from its start (an element
+/// recommending a step below SMIN, such as a source of 1e30 Hz) has no larger step to
+/// fall from; it crawls too when a window's mean step is below twice SMIN while SMAX is at
+/// least 1 / crawl_drop times SMIN.
 
 #include <cmath>
 #include <string>
@@ -26,7 +29,8 @@ namespace pradis {
 /// would: their mean step is below crawl_drop of the largest. (The mean, not each step: a step
 /// that Newton failures cut and that then grows again saws up and down while it crawls.)
 inline constexpr long crawl_steps = 10000;
-/// See crawl_steps.
+/// See crawl_steps. A window also crawls when its mean step is below twice SMIN while
+/// SMIN <= crawl_drop SMAX: the step is held at SMIN, whatever the stage's largest.
 inline constexpr double crawl_drop = 1e-3;
 
 namespace detail {
@@ -44,8 +48,13 @@ inline error step_budget_error(long max_steps, double t, double end, const std::
 /// and the stage's step count against run_options::max_steps.
 class step_watch {
  public:
-  /// Starts a stage.
-  void start_stage() noexcept { *this = step_watch{}; }
+  /// Starts a stage whose steps lie in [h_min, h_max] (SMIN, SMAX; 0, 0: the floor
+  /// criterion of crawl_drop is not applied).
+  void start_stage(double h_min = 0, double h_max = 0) noexcept {
+    *this = step_watch{};
+    h_min_ = h_min;
+    h_max_ = h_max;
+  }
 
   /// Records an accepted step of size h that ended at time t.
   void accepted(double h, double t) noexcept {
@@ -53,7 +62,12 @@ class step_watch {
     if (h > largest_) largest_ = h;
     if (window_ == 0) t_window_ = t - h;
     if (++window_ == crawl_steps) {
-      crawled_ = crawled_ || t - t_window_ < crawl_drop * static_cast<double>(crawl_steps) * largest_;
+      const double span = t - t_window_, n = static_cast<double>(crawl_steps);
+      if (!crawled_ && span < crawl_drop * n * largest_) {
+        crawled_ = true;
+      } else if (!crawled_ && h_min_ > 0 && h_min_ <= crawl_drop * h_max_ && span < 2 * n * h_min_) {
+        crawled_ = at_floor_ = true;
+      }
       window_ = 0;
     }
   }
@@ -74,14 +88,19 @@ class step_watch {
   /// step (an element's recommendation, the DOF whose local error; empty when unknown).
   std::string crawl_text(double t, double h, double end, const std::string& why) const {
     const double more = h > 0 ? std::round((end - t) / h) : 0;
-    return "warning: the run crawls: the last " + std::to_string(crawl_steps) +
-           " accepted steps were on average below " + num(crawl_drop) + " of the stage's largest step " +
-           num(largest_) + " (now h = " + num(h) +
+    const std::string held = at_floor_ ? " accepted steps were held at SMIN = " + num(h_min_) +
+                                             " (on average below twice it; SMAX = " + num(h_max_) + ")"
+                                       : " accepted steps were on average below " + num(crawl_drop) +
+                                             " of the stage's largest step " + num(largest_);
+    return "warning: the run crawls: the last " + std::to_string(crawl_steps) + held + " (now h = " + num(h) +
            " at t = " + num(t) + "; at this step the stage needs about " + num(more) + " more steps to END = " +
            num(end) + ")" +
            (why.empty() ? std::string() : "; " + why) +
-           ". A singular state of the model usually causes this (a massless DOF whose force vanishes, a switch "
-           "that chatters); NSTEPMAX (run_options::max_steps) ends a stage after that many steps";
+           (at_floor_ ? ". An element that recommends a step below SMIN (a source of too high a frequency, a "
+                        "contact too stiff) or steps that keep failing above it usually cause this"
+                      : ". A singular state of the model usually causes this (a massless DOF whose force vanishes, a "
+                        "switch that chatters)") +
+           "; NSTEPMAX (run_options::max_steps) ends a stage after that many steps";
   }
 
   /// Whether the stage has used up its budget of `max_steps` accepted steps (0: none).
@@ -95,10 +114,12 @@ class step_watch {
 
  private:
   double largest_ = 0;
+  double h_min_ = 0, h_max_ = 0;  // the stage's SMIN and SMAX (start_stage)
   long steps_ = 0;
   double t_window_ = 0;  // the time at the start of the current window of crawl_steps steps
   long window_ = 0;      // steps in it so far
   bool crawled_ = false, warned_ = false;
+  bool at_floor_ = false;  // the window that crawled was held at SMIN (not below the largest step)
 };
 
 }  // namespace detail

@@ -119,7 +119,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       recommended_ = asm_.recommended_step();
     }
     start_history();
-    watch_.start_stage();
+    watch_.start_stage(opt.smin, opt.smax);
     const double t_start = t_;
     long out_index = 1;
     double next_out = opt.out > 0 ? t_start + opt.out : opt.end;
