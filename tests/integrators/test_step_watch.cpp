@@ -86,6 +86,23 @@ error thrown_by(F&& f) {
   return error(error_code::invalid_model, "unreachable");
 }
 
+/// Runs the stage o on a.m with the BDF driver or NEWMARK, the log into `log`; returns
+/// the pradis::error it must throw, and in t_end the time the driver reached.
+error run_watched(watched_oscillator& a, const run_options& o, bool bdf, std::ostringstream& log, double& t_end) {
+  if (bdf) {
+    bdf_simulation s(a.m);
+    s.log().to(log);
+    const error e = thrown_by([&] { s.run(o); });
+    t_end = s.time();
+    return e;
+  }
+  simulation s(a.m, newmark{});
+  s.log().to(log);
+  const error e = thrown_by([&] { s.run(o); });
+  t_end = s.time();
+  return e;
+}
+
 }  // namespace
 
 TEST_SUITE("integrators/step_watch") {
@@ -164,19 +181,8 @@ TEST_SUITE("integrators/step_watch") {
       std::ostringstream log;
       run_options o = budget_stage(1.0, 25000);
       o.drltx = 1e-6;
-      error e(error_code::invalid_model, "");
       double t_end = 0;
-      if (bdf) {
-        bdf_simulation s(a.m);
-        s.log().to(log);
-        e = thrown_by([&] { s.run(o); });
-        t_end = s.time();
-      } else {
-        simulation s(a.m, newmark{});
-        s.log().to(log);
-        e = thrown_by([&] { s.run(o); });
-        t_end = s.time();
-      }
+      const error e = run_watched(a, o, bdf, log, t_end);
       CHECK(e.code() == error_code::step_budget);
       const std::string text = log.str();
       INFO(text);
@@ -210,19 +216,8 @@ TEST_SUITE("integrators/step_watch") {
       run_options o = budget_stage(1.0, 12000);
       o.smin = 1e-9;
       o.drltx = 1e-6;
-      error e(error_code::invalid_model, "");
       double t_end = 0;
-      if (bdf) {
-        bdf_simulation s(a.m);
-        s.log().to(log);
-        e = thrown_by([&] { s.run(o); });
-        t_end = s.time();
-      } else {
-        simulation s(a.m, newmark{});
-        s.log().to(log);
-        e = thrown_by([&] { s.run(o); });
-        t_end = s.time();
-      }
+      const error e = run_watched(a, o, bdf, log, t_end);
       CHECK(e.code() == error_code::step_budget);
       CHECK(t_end == doctest::Approx(12000 * 1e-9).epsilon(1e-6));
       const std::string text = log.str();

@@ -5,8 +5,11 @@
 // crawl warning, integrators/step_watch.hpp) reach the session's report lines.
 
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "lang_test_support.hpp"
 
@@ -18,6 +21,32 @@ namespace {
 /// The small model (mass 2, spring 100, load 10; its stage at line 14) with the stage `stage`.
 std::string with_stage(const std::string& stage) {
   return small_with("  Calc 'SHTERM (END=0.1, SMAX=1E-3)\n", "  " + stage + "\n");
+}
+
+/// An example model (examples/models/`file`) with each pair's first text replaced by its
+/// second (each must occur), run without files: the run's error text (empty if none) and
+/// its report lines.
+struct mutant_run {
+  std::string error, log;
+  std::unique_ptr<lang::session> session;
+};
+mutant_run run_mutant(const std::string& file, const std::vector<std::pair<std::string, std::string>>& edits) {
+  std::string text = lang_test::slurp(lang_test::models_dir() / file);
+  for (const auto& [from, to] : edits) {
+    const auto at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, from.size(), to);
+  }
+  std::ostringstream log;
+  mutant_run r;
+  r.session = lang_test::build(text);
+  try {
+    r.session->run({.write_files = false, .log = &log});
+  } catch (const lang::lang_error& x) {
+    r.error = x.what();
+  }
+  r.log = log.str();
+  return r;
 }
 }  // namespace
 
@@ -112,26 +141,14 @@ TEST_SUITE("lang/step_budget") {
     // held only by the LINKD link, whose force on it vanishes where the link has its free
     // length. At t = 0.14 s SHTERM's steps fall from SMAX = 1e-4 s to below 1e-7 s; without
     // a budget it reached t = 0.26 s of its 1 s stage after 120 s.
-    std::string text = lang_test::slurp(lang_test::models_dir() / "two_bodies.prd");
-    const auto body = text.find("'MD (4 5 6;");
-    REQUIRE(body != std::string::npos);
-    text.replace(body, 11, "'MD (1 5 6;");
-    const auto opts = text.find("DRLTI=1E-8)");
-    REQUIRE(opts != std::string::npos);
-    text.replace(opts, 11, "DRLTI=1E-8, NSTEPMAX=40000)");
-    std::ostringstream log;
-    auto s = lang_test::build(text);
-    std::string e;
-    try {
-      s->run({.write_files = false, .log = &log});
-    } catch (const lang::lang_error& x) {
-      e = x.what();
-    }
+    const mutant_run r =
+        run_mutant("two_bodies.prd", {{"'MD (4 5 6;", "'MD (1 5 6;"}, {"DRLTI=1E-8)", "DRLTI=1E-8, NSTEPMAX=40000)"}});
+    const std::string& e = r.error;
     CAPTURE(e);
-    CAPTURE(log.str());
+    CAPTURE(r.log);
     CHECK(e.find("the stage used up its NSTEPMAX = 40000 accepted steps at t = 0.14") != std::string::npos);
     CHECK(e.find("(pradis error 142, step budget used up)") != std::string::npos);
-    const std::string& l = log.str();
+    const std::string& l = r.log;
     const std::string head =
         "warning: the run crawls: the last 10000 accepted steps were on average below 0.001 of the stage's largest "
         "step 0.0001 (now h = ";
@@ -141,7 +158,7 @@ TEST_SUITE("lang/step_budget") {
     CHECK(h < 1e-7);
     CHECK(l.find("failed steps (Newton, singular situations) cut the step: ", w) != std::string::npos);
     // The rows up to the stop are kept (OUT = 0.005: the last one at t = 0.145).
-    const io::table& t = s->results();
+    const io::table& t = r.session->results();
     REQUIRE(t.rows() >= 2);
     CHECK(t.at(t.rows() - 1, 0) == doctest::Approx(0.145).epsilon(1e-12));
   }
@@ -151,56 +168,31 @@ TEST_SUITE("lang/step_budget") {
     // 0, 1e30, 0, -2). The source recommends T / 20 = 5e-32 s, NEWMARK takes SMIN = 1e-11 s
     // from the start, and so the stage's largest step is SMIN too; before the floor
     // criterion of step_watch, 6 million steps passed without a line.
-    std::string text = lang_test::slurp(lang_test::models_dir() / "eccentric_shaker.prd");
-    const auto guide = text.find("Guide = 0, 0, 0, 0");
-    REQUIRE(guide != std::string::npos);
-    text.replace(guide, 18, "Guide = 0, 1e30, 0, -2");
-    const auto opts = text.find("ITR=20,");
-    REQUIRE(opts != std::string::npos);
-    text.replace(opts, 7, "ITR=20, NSTEPMAX=10500,");
-    std::ostringstream log;
-    auto s = lang_test::build(text);
-    std::string e;
-    try {
-      s->run({.write_files = false, .log = &log});
-    } catch (const lang::lang_error& x) {
-      e = x.what();
-    }
+    const mutant_run r = run_mutant("eccentric_shaker.prd", {{"Guide = 0, 0, 0, 0", "Guide = 0, 1e30, 0, -2"},
+                                                             {"ITR=20,", "ITR=20, NSTEPMAX=10500,"}});
+    const std::string& e = r.error;
     CAPTURE(e);
-    CAPTURE(log.str());
+    CAPTURE(r.log);
     CHECK(e.find("the stage used up its NSTEPMAX = 10500 accepted steps at t = 1.05e-07") != std::string::npos);
-    const std::string& l = log.str();
+    const std::string& l = r.log;
     CHECK(l.find("warning: the run crawls: the last 10000 accepted steps were held at SMIN = 1e-11 (on average "
                  "below twice it; SMAX = 0.001) (now h = 1e-11 at t = 1e-07; at this step the stage needs about "
                  "3.9999999e+11 more steps to END = 4); an element's recommended step (STEPMD) 5e-32 sets the step") !=
           std::string::npos);
   }
 
-  TEST_CASE("a crawl under error control from failed steps: the warning names them (spring_pendulum.prd without Mass X)") {
+  TEST_CASE("a crawl under error control from failed steps: the warning names them (spring_pendulum.prd, no Mass X)") {
     // The fuzz find: spring_pendulum.prd without its line 'Mass X'. DOF 1 is then massless,
     // held only by the LINKD link; NEWMARK under error control has its steps cut by Newton
     // failures and crawls from t = 0.17 s on. The error test limits no step there, so the
     // warning names the failed steps (it used to name no cause).
-    std::string text = lang_test::slurp(lang_test::models_dir() / "spring_pendulum.prd");
-    const std::string mass_x = "    Mass X 'MASS (1; Mass)\n";
-    const auto line = text.find(mass_x);
-    REQUIRE(line != std::string::npos);
-    text.erase(line, mass_x.size());
-    const auto opts = text.find("GAMMA=0.5,");
-    REQUIRE(opts != std::string::npos);
-    text.replace(opts, 10, "GAMMA=0.5, NSTEPMAX=30000,");
-    std::ostringstream log;
-    auto s = lang_test::build(text);
-    std::string e;
-    try {
-      s->run({.write_files = false, .log = &log});
-    } catch (const lang::lang_error& x) {
-      e = x.what();
-    }
+    const mutant_run r = run_mutant("spring_pendulum.prd", {{"    Mass X 'MASS (1; Mass)\n", ""},
+                                                            {"GAMMA=0.5,", "GAMMA=0.5, NSTEPMAX=30000,"}});
+    const std::string& e = r.error;
     CAPTURE(e);
-    CAPTURE(log.str());
+    CAPTURE(r.log);
     CHECK(e.find("the stage used up its NSTEPMAX = 30000 accepted steps at t = 0.1") != std::string::npos);
-    const std::string& l = log.str();
+    const std::string& l = r.log;
     const auto w = l.find("warning: the run crawls: the last 10000 accepted steps were on average below 0.001 of the "
                           "stage's largest step 0.001 (now h = ");
     REQUIRE(w != std::string::npos);

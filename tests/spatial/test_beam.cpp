@@ -81,10 +81,13 @@ constexpr newton_options steel_newton{.dabsu = 1e-9, .drltu = 0, .dabsi = 1e-7, 
 constexpr newton_options tight{.dabsu = 1e-12, .drltu = 0, .dabsi = 1e-11, .drlti = 0, .itr = 8};
 }  // namespace
 
+/// One model type, with every element type of this file's tests, for them all: each model
+/// type compiles the drivers anew.
+using beam_model = pradis::model<elastic_beam, spatial_force, beam_inertia, body_torque>;
 TEST_SUITE("spatial/beam") {
   TEST_CASE("cantilever, 10 BEAM3: static tip deflection P L^3 / (3 E I) in both bending planes") {
     const section s;
-    cantilever<model<elastic_beam, spatial_force>> c(10);
+    cantilever<beam_model> c(10);
     const double p = 1e-4;  // tip deflection 1e-4 L: geometric nonlinearity ~1e-8
     c.m.add<spatial_force>("load", {0, p, p, 0, 0, 0, 0, 0}, c.tip()[0], c.tip()[1], c.tip()[2]);
     simulation sim(c.m);
@@ -153,7 +156,7 @@ TEST_SUITE("spatial/beam") {
     // deflection P L^3 / (3 E Iz) (97% of it in the first mode); the period from the upward crossings of that
     // level over two periods. Newmark average acceleration at h = T/100 lengthens the period by Omega^2/12 = 3.3e-4.
     const section s = steel;
-    cantilever<model<elastic_beam, beam_inertia, spatial_force>, true> c(10, s);
+    cantilever<beam_model, true> c(10, s);
     const double p = 3 * s.e * s.iz * 1e-4;  // static tip deflection 1e-4 L
     c.m.add<spatial_force>("load", {0, p, 0, 0, 0, 0, 0, 0}, c.tip()[0], c.tip()[1], c.tip()[2]);
     const double f_exact = 1.87510407 * 1.87510407 * std::sqrt(s.e * s.iz / (s.rho * s.a)) / (2 * pi);
@@ -178,7 +181,7 @@ TEST_SUITE("spatial/beam") {
 
   TEST_CASE("cantilever, 10 BEAM3: an end moment 2 pi E I / L, ramped, rolls it into a full circle") {
     const section s;
-    cantilever<model<elastic_beam, body_torque>> c(10);
+    cantilever<beam_model> c(10);
     const double mfull = 2 * pi * s.e * s.iy;  // L = 1; about the tip's body Y (global Y throughout)
     // M(t) = M/2 (1 - cos(pi t)): 0 at t = 0, M at t = 1.
     c.m.add<body_torque>("moment", {0, mfull / 2, 0, 0, mfull / 2, 0, 0.5, -90}, c.tip_rotation());
@@ -196,7 +199,7 @@ TEST_SUITE("spatial/beam") {
   TEST_CASE("BEAM3 and BEAMI3 refuse a zero length and non-positive moduli or sections (100), a wrong count (101)") {
     const section s;
     auto run_error = [](auto build) {
-      model<elastic_beam, beam_inertia> m;
+      beam_model m;
       const auto d = m.add_dofs(6);
       build(m, std::array<dof, 3>{d[0], d[1], d[2]}, m.add_rotation_node("ra"), std::array<dof, 3>{d[3], d[4], d[5]},
             m.add_rotation_node("rb"));
@@ -233,7 +236,7 @@ TEST_SUITE("spatial/beam") {
                 "m1", "density");
     check_error(inertia({s.rho, s.a, -1, s.iz, s.j, 0, 0, 0, 1, 0, 0, 0, 1, 0}), error_code::invalid_parameter,
                 "BEAMI3", "m1", "second moments");
-    model<elastic_beam, beam_inertia> m0;
+    beam_model m0;
     const auto d = m0.add_dofs(12);
     const std::array<double, 7> seven{};
     for (const char* name : {"BEAM3", "BEAMI3"}) {

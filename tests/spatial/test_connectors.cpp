@@ -33,6 +33,10 @@ using pradis_spatial_tests::body;
 /// Seconds since t0.
 }  // namespace
 
+/// One model type, with every element type of this file's tests, for them all: each model
+/// type compiles the drivers anew.
+using connectors_model = pradis::model<rigid_body, spatial_spring_damper, spatial_force, initial_rotation,
+    initial_velocity, rotational_spring_damper>;
 TEST_SUITE("spatial/connectors") {
   TEST_CASE("SD3: a body hanging on a spring-damper from a fixed point follows m z'' + c z' + k z = -m g exactly") {
     // Body (m = 2) with its reference point at the origin, attached at the body point
@@ -42,7 +46,7 @@ TEST_SUITE("spatial/connectors") {
     // sigma = c / (2 m), wd = sqrt(k / m - sigma^2) (the damped linear oscillator).
     const auto t0 = std::chrono::steady_clock::now();
     const double mass = 2.0, k = 800.0, c = 8.0, h = 1e-3;
-    model<rigid_body, spatial_spring_damper, spatial_force> m;
+    connectors_model m;
     const auto x = m.add_dofs(3, "x");
     const rotation_node r = m.add_rotation_node("r");
     const dof G = m.ground();
@@ -84,7 +88,7 @@ TEST_SUITE("spatial/connectors") {
       double e0 = 0, emax = 0, dp = 0, dh = 0;
     };
     auto run = [&](double h) {
-    model<rigid_body, spatial_spring_damper, initial_rotation, initial_velocity> m;
+    connectors_model m;
     const auto xa = m.add_dofs(3, "xa");
     const auto xb = m.add_dofs(3, "xb");
     const rotation_node ra = m.add_rotation_node("ra"), rb = m.add_rotation_node("rb");
@@ -146,7 +150,7 @@ TEST_SUITE("spatial/connectors") {
     // theta(t) = (w0 / wd) e^(-sigma t) sin(wd t), sigma = c / (2 J), wd = sqrt(k / J - sigma^2).
     const auto t0 = std::chrono::steady_clock::now();
     const double jz = 0.25, k = 40.0, c = 0.5, w0 = 2.0, h = 1e-3;
-    model<rigid_body, rotational_spring_damper, initial_rotation> m;
+    connectors_model m;
     const auto x = m.add_dofs(3, "x");
     const rotation_node r = m.add_rotation_node("r");
     const dof G = m.ground();
@@ -186,7 +190,7 @@ TEST_SUITE("spatial/connectors") {
       double emax = 0, dh = 0, phimax = 0;
     };
     auto run = [&](double h) {
-    model<rigid_body, rotational_spring_damper, initial_rotation> m;
+    connectors_model m;
     const auto xa = m.add_dofs(3, "xa");
     const auto xb = m.add_dofs(3, "xb");
     const rotation_node ra = m.add_rotation_node("ra"), rb = m.add_rotation_node("rb");
@@ -231,7 +235,7 @@ TEST_SUITE("spatial/connectors") {
       const char* mention;
     };
     for (const bad b : {bad{-1.0, 1.0, 0.0, "k < 0"}, bad{1.0, -0.5, 0.0, "L0 < 0"}, bad{1.0, 1.0, -2.0, "c < 0"}}) {
-      model<rigid_body, spatial_spring_damper> m;
+      connectors_model m;
       const auto x = m.add_dofs(3, "x");
       const rotation_node r = m.add_rotation_node("r");
       const dof G = m.ground();
@@ -254,7 +258,7 @@ TEST_SUITE("spatial/connectors") {
 
   TEST_CASE("RSD3 with a negative stiffness or damping stops the run with code 100 in its name") {
     for (const auto& [k, c, mention] : {std::tuple{-1.0, 0.0, "k < 0"}, std::tuple{1.0, -1.0, "c < 0"}}) {
-      model<rigid_body, rotational_spring_damper> m;
+      connectors_model m;
       const auto x = m.add_dofs(3, "x");
       const rotation_node r = m.add_rotation_node("r");
       const dof G = m.ground();

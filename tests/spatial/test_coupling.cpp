@@ -28,6 +28,10 @@ using pradis_spatial_tests::pi;
 rigid_body::parameters sphere(double m, double j) { return {m, j, j, j, 0, 0, 0, 0, 0, 0}; }
 }  // namespace
 
+/// One model type, with every element type of this file's tests, for them all: each model
+/// type compiles the drivers anew.
+using coupling_model = pradis::model<rigid_body, shaft_coupling, velocity_source, spatial_torque, point_mass,
+    linear_spring, linear_damper, revolute_joint, initial_rotation>;
 TEST_SUITE("spatial/coupling") {
   TEST_CASE("SHC3: a velocity source drives a body over three revolutions about a skew axis; the twist is the exact "
             "damped oscillation") {
@@ -40,7 +44,7 @@ TEST_SUITE("spatial/coupling") {
     const auto t0 = std::chrono::steady_clock::now();
     const double j = 0.1, k = 40.0, c = 0.4, w = 2 * pi, h = 1e-3, end = 3.0;
     const vec3 a = vec3(1, 2, 2) / 3.0;
-    model<rigid_body, shaft_coupling, velocity_source> m;
+    coupling_model m;
     const dof phi = m.add_dof("phi");
     const rotation_node r = m.add_rotation_node("r");
     const dof G = m.ground();
@@ -80,7 +84,7 @@ TEST_SUITE("spatial/coupling") {
     // signs check that the coupling passes the torque to the 1D side as a flow.
     const double k = 50.0, k1 = 20.0, mom = 3.0;
     const vec3 a = vec3(2, -1, 2) / 3.0;
-    model<rigid_body, shaft_coupling, spatial_torque, point_mass, linear_spring, linear_damper, revolute_joint> m;
+    coupling_model m;
     const dof phi = m.add_dof("phi");
     const rotation_node r = m.add_rotation_node("r");
     const dof G = m.ground();
@@ -114,7 +118,7 @@ TEST_SUITE("spatial/coupling") {
     for (const bad b : {bad{{0, 0, 0, 10, 1, 0}, "zero axis"}, bad{{0, 0, 1, 0, 1, 0}, "k <= 0"},
                         bad{{0, 0, 1, -5, 1, 0}, "k <= 0"}, bad{{0, 0, 1, 10, -1, 0}, "c < 0"},
                         bad{{0, nan, 1, 10, 1, 0}, "must be finite"}, bad{{0, 0, 1, 10, 1, nan}, "must be finite"}}) {
-      model<rigid_body, shaft_coupling> m;
+      coupling_model m;
       const dof phi = m.add_dof("phi");
       const rotation_node r = m.add_rotation_node("r");
       const dof G = m.ground();
@@ -128,7 +132,7 @@ TEST_SUITE("spatial/coupling") {
 
   TEST_CASE("SHC3 whose node starts turned 180 degrees about an axis perpendicular to the shaft stops with code 75") {
     // The twist about a is undefined there (t = a.v = 0 and w = 0).
-    model<rigid_body, shaft_coupling, initial_rotation> m;
+    coupling_model m;
     const dof phi = m.add_dof("phi");
     const rotation_node r = m.add_rotation_node("r");
     const dof G = m.ground();

@@ -65,11 +65,15 @@ struct pendulum_result {
   double gap_ratio = 0; ///< mean joint gap over the second half times k / (m g)
 };
 
+/// One model type, with every element type of this file's tests, for them all: each model
+/// type compiles the drivers anew.
+using joints_model = pradis::model<rigid_body, spherical_joint, spatial_force, initial_rotation, initial_displacement,
+    revolute_joint, spatial_torque>;
 /// Compound pendulum: body (m, Jxx) with its centre of mass a distance d below a fixed
 /// pivot, on SPH3 with stiffness k, started at rest at angle theta0 about X.
 pendulum_result compound_pendulum(double k, double theta0, double end, double h) {
   const double mass = 1.0, jxx = 0.02, d = 0.5;
-  model<rigid_body, spherical_joint, spatial_force, initial_rotation, initial_displacement> m;
+  joints_model m;
   const auto x = m.add_dofs(3, "x");
   const rotation_node r = m.add_rotation_node("r");
   const dof G = m.ground();
@@ -155,7 +159,7 @@ TEST_SUITE("spatial/joints") {
     const double period = 2 * half_t, mean_rate = half_phi / half_t, theta1 = std::acos(u1);
     const int periods = 3;  // CI length: 3 nutation periods (about 0.70 s)
 
-    model<rigid_body, spherical_joint, spatial_force, initial_rotation> m;
+    joints_model m;
     const auto x = m.add_dofs(3, "x");
     const rotation_node r = m.add_rotation_node("r");
     const dof G = m.ground();
@@ -193,7 +197,7 @@ TEST_SUITE("spatial/joints") {
 
   TEST_CASE("SPH3 with k <= 0 or c < 0 stops the run with code 100 in its name") {
     for (const auto& [k, c, mention] : {std::tuple{0.0, 0.0, "k <= 0"}, std::tuple{1.0, -1.0, "c < 0"}}) {
-      model<rigid_body, spherical_joint> m;
+      joints_model m;
       const auto x = m.add_dofs(3, "x");
       const rotation_node r = m.add_rotation_node("r");
       const dof G = m.ground();
@@ -215,7 +219,7 @@ TEST_SUITE("spatial/joints") {
     const auto t0 = std::chrono::steady_clock::now();
     const double mass = 1.0, jxx = 0.02, d = 0.5, off = 0.1, theta0 = 60 * pi / 180, k = 1e6, kr = 1e5, h = 1e-3;
     const double ip = jxx + mass * d * d, exact = compound_pendulum_period(ip, mass, d, theta0);
-    model<rigid_body, revolute_joint, spatial_force, initial_rotation, initial_displacement> m;
+    joints_model m;
     const auto x = m.add_dofs(3, "x");
     const rotation_node r = m.add_rotation_node("r");
     const dof G = m.ground();
@@ -263,7 +267,7 @@ TEST_SUITE("spatial/joints") {
     // Jyy, so the spin about the tilted axis needs no gyroscopic moment).
     const auto t0 = std::chrono::steady_clock::now();
     const double jxx = 0.01, jzz = 0.02, mz = 1.0, mx = 0.5, kr = 1e4, k = 1e6, end = 0.4, h = 1e-3;
-    model<rigid_body, revolute_joint, spatial_torque> m;
+    joints_model m;
     const auto x = m.add_dofs(3, "x");
     const rotation_node r = m.add_rotation_node("r");
     const dof G = m.ground();
@@ -319,7 +323,7 @@ TEST_SUITE("spatial/joints") {
     with([](auto& p) { p.k = 0; }, "k <= 0");
     for (const bad& b : cases) {
       CAPTURE(b.mention);
-      model<rigid_body, revolute_joint> m;
+      joints_model m;
       const auto x = m.add_dofs(3, "x");
       const rotation_node r = m.add_rotation_node("r");
       const dof G = m.ground();

@@ -31,7 +31,9 @@ using pradis_element_tests::error_from;
 
 namespace {
 using pradis_spatial_tests::pi;
-using plate_model = model<triangle_plate>;
+/// One model type, with every element type of this file's tests, for them all: each model
+/// type compiles the drivers anew.
+using plate_model = pradis::model<triangle_plate, shaft_coupling, rotational_spring_damper, spatial_torque>;
 
 /// The global matrices of a plate model from the elements' evaluate at u = v = a = 0:
 /// K, the lumped mass diagonal and the load F = -f(0) (equation i is model DOF i + 1).
@@ -428,7 +430,7 @@ TEST_SUITE("spatial/plate") {
     // +Y. The plate alone is a rotational spring kp = b D (1 - nu^2) / L on its end side (pure bending, exact for
     // Morley), so the node turns by psi = P / (kr + kc kp / (kc + kp)) and the side by theta = kc psi / (kc + kp);
     // SHC3 and RSD3 are exact for a rotation about a fixed axis at any angle.
-    using coupled_model = model<triangle_plate, shaft_coupling, rotational_spring_damper, spatial_torque>;
+    using coupled_model = plate_model;
     coupled_model m;
     const double e = 2.1e11, nu = 0.3, h = 0.01, l = 1, b = 0.5, p = 10, kc = 1e6, kr = 1e3;
     const plate_mesh mesh = rectangular_plate_mesh(l, b, 1, 1);  // vertices 0 (0, 0), 1 (L, 0), 2 (0, b), 3 (L, b)

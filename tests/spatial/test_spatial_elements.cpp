@@ -41,9 +41,13 @@ double rotation_distance_z(const quaternion& q, double theta) {
 }
 }  // namespace
 
+/// One model type, with every element type of this file's tests, for them all: each model
+/// type compiles the drivers anew.
+using spatial_elements_model = pradis::model<rigid_body, body_torque, spatial_torque, initial_rotation, body_force,
+    offset_force, spatial_force, initial_displacement>;
 TEST_SUITE("spatial/model") {
   TEST_CASE("elements on one rotational node share its hidden q4; the norm equation is assembled once per node") {
-    model<rigid_body, body_torque, spatial_torque> m;
+    spatial_elements_model m;
     const auto x = m.add_dofs(3, "x");
     const rotation_node r = m.add_rotation_node("r");
     CHECK(m.dof_count() == 1 + 3 + 4);
@@ -101,7 +105,7 @@ TEST_SUITE("spatial/model") {
   }
 
   TEST_CASE("a node is identified by its three DOFs: created by the first element, refused in another role (110)") {
-    model<rigid_body, body_torque> m;
+    spatial_elements_model m;
     const auto d = m.add_dofs(6, "d");
     m.add<rigid_body>("b1", body(1, 1, 1, 1), d[0], d[1], d[2], d[3], d[4], d[5]);
     REQUIRE(m.rotation_nodes().size() == 1);
@@ -126,7 +130,7 @@ TEST_SUITE("spatial/model") {
     // turn about Z; a moment Mz on the body turns it by theta = theta0 + w0 t + Mz t^2 / (2 Jz)
     // (Euler's equation about a fixed principal axis).
     const double jz = 3.0, mz = 1.5, theta0 = 30 * pi / 180, w0 = 0.5;
-    model<rigid_body, spatial_torque, initial_rotation> m;
+    spatial_elements_model m;
     const auto x = m.add_dofs(3, "x");
     const dof qz = m.add_dof("qz");
     const rotation_node r = m.add_rotation_node("r", m.ground(), m.ground(), qz);
@@ -163,7 +167,7 @@ TEST_SUITE("spatial/elements") {
     // Body symmetric about its Z axis (Jx = Jy), tilted by 90 degrees about global X (ROT0), at
     // rest; a torque n along body Z stays along the symmetry axis: R(t) = R0 Rz(n t^2 / (2 Jz)).
     const double jz = 0.8, n = 0.4;
-    model<rigid_body, body_torque, initial_rotation> m;
+    spatial_elements_model m;
     const auto x = m.add_dofs(3, "x");
     const rotation_node r = m.add_rotation_node("r");
     m.add<rigid_body>("body", body(1, 2, 2, jz), x[0], x[1], x[2], r);
@@ -192,7 +196,7 @@ TEST_SUITE("spatial/elements") {
     // body X: m x'' = P cos(w t), m y'' = P sin(w t), so x = P (1 - cos w t) / (m w^2),
     // y = P (w t - sin w t) / (m w^2).
     const double mass = 2.0, w = 3.0, p = 1.2;
-    model<rigid_body, body_force, initial_rotation> m;
+    spatial_elements_model m;
     const auto x = m.add_dofs(3, "x");
     const rotation_node r = m.add_rotation_node("r");
     m.add<rigid_body>("body", body(mass, 1, 1, 1), x[0], x[1], x[2], r);
@@ -226,7 +230,7 @@ TEST_SUITE("spatial/elements") {
       a = an;
     }
     const double period = 4 * std::sqrt(ip / (mass * g * l)) * pi / (2 * a);
-    model<rigid_body, offset_force, initial_rotation> m;
+    spatial_elements_model m;
     const dof G = m.ground();
     const rotation_node r = m.add_rotation_node("r");
     m.add<rigid_body>("body", {mass, jxx, jxx, 0.02, 0, 0, 0, 0, 0, -l}, G, G, G, r);
@@ -261,7 +265,7 @@ TEST_SUITE("spatial/elements") {
     // m x'' = P0 + A sin(W t + phi): x = P0 t^2/(2m) + A/m [(sin phi - sin(W t + phi))/W^2 + t cos(phi)/W].
     const double mass = 1.5;
     const spatial_load_parameters lp{1.0, -2.0, 0.5, 0.3, 0.2, -0.1, 0.5, 30.0};
-    model<rigid_body, spatial_force> m;
+    spatial_elements_model m;
     const auto x = m.add_dofs(3, "x");
     const rotation_node r = m.add_rotation_node("r");
     m.add<rigid_body>("body", body(mass, 1, 2, 3), x[0], x[1], x[2], r);
@@ -291,7 +295,7 @@ TEST_SUITE("spatial/elements") {
     // kinetic energy are invariants. The reference point P starts at rest, so the centre of mass
     // starts with v_c = omega x rho and the body tumbles about it.
     const rigid_body::parameters bp{2.0, 0.5, 0.4, 0.3, 0.05, -0.03, 0.02, 0.3, -0.2, 0.1};
-    model<rigid_body, initial_rotation> m;
+    spatial_elements_model m;
     const auto x = m.add_dofs(3, "x");
     const rotation_node r = m.add_rotation_node("r");
     const auto b = m.add<rigid_body>("body", bp, x[0], x[1], x[2], r);
@@ -331,14 +335,14 @@ TEST_SUITE("spatial/elements") {
     for (const rigid_body::parameters& bp :
          {rigid_body::parameters{1, 1, 1, -1, 0, 0, 0, 0, 0, 0}, rigid_body::parameters{1, 1, 1, 1, 2, 0, 0, 0, 0, 0},
           rigid_body::parameters{1, 1, 1, 0, 0, 0, 0, 0, 0, 0}}) {
-      model<rigid_body> m;
+      spatial_elements_model m;
       const auto x = m.add_dofs(3);
       m.add<rigid_body>("body", bp, x[0], x[1], x[2], m.add_rotation_node());
       simulation sim(m);
       check_error(error_from([&] { sim.run({.end = 0.1, .smax = 0.01}); }), error_code::invalid_parameter, "BODY3",
                   "body", "not positive definite");
     }
-    model<rigid_body> m;
+    spatial_elements_model m;
     const auto x = m.add_dofs(3);
     m.add<rigid_body>("body", body(-1, 1, 1, 1), x[0], x[1], x[2], m.add_rotation_node());
     simulation sim(m);
@@ -348,7 +352,7 @@ TEST_SUITE("spatial/elements") {
 
   TEST_CASE("a zero quaternion at the start is code 75 'Lq near zero'; a non-finite initial rotation is code 100") {
     {
-      model<rigid_body, initial_displacement> m;
+      spatial_elements_model m;
       const auto x = m.add_dofs(3);
       const rotation_node r = m.add_rotation_node("r");
       m.add<rigid_body>("body", body(1, 1, 1, 1), x[0], x[1], x[2], r);
@@ -358,7 +362,7 @@ TEST_SUITE("spatial/elements") {
                   "body", "Lq near zero");
     }
     {
-      model<rigid_body, initial_rotation> m;
+      spatial_elements_model m;
       const auto x = m.add_dofs(3);
       const rotation_node r = m.add_rotation_node("r");
       m.add<rigid_body>("body", body(1, 1, 1, 1), x[0], x[1], x[2], r);
@@ -368,7 +372,7 @@ TEST_SUITE("spatial/elements") {
                   "start", "must be finite");
     }
     {
-      model<rigid_body, initial_rotation> m;
+      spatial_elements_model m;
       const auto x = m.add_dofs(3);
       const rotation_node r = m.add_rotation_node("r");
       m.add<rigid_body>("body", body(1, 1, 1, 1), x[0], x[1], x[2], r);
@@ -380,7 +384,7 @@ TEST_SUITE("spatial/elements") {
   }
 
   TEST_CASE("ROT0 with a non-zero component on a fixed (grounded) q1 is code 90") {
-    model<rigid_body, initial_rotation> m;
+    spatial_elements_model m;
     const auto x = m.add_dofs(3);
     const dof qy = m.add_dof(), qz = m.add_dof();
     const rotation_node r = m.add_rotation_node("r", m.ground(), qy, qz);
@@ -395,7 +399,7 @@ TEST_SUITE("spatial/elements") {
     // A moment spins a body up about Z: with the average-acceleration scheme Lq^2 (1 + h^2 |w|^2 / 16)
     // stays constant (docs/rotations.md), so at h |w| ~ 2 Lq has fallen by more than 10 %. With
     // SMIN = SMAX the step cannot be cut and the run stops.
-    model<rigid_body, spatial_torque> m;
+    spatial_elements_model m;
     const auto x = m.add_dofs(3);
     const rotation_node r = m.add_rotation_node("r");
     m.add<rigid_body>("body", body(1, 1, 1, 1), x[0], x[1], x[2], r);
@@ -410,12 +414,12 @@ TEST_SUITE("spatial/elements") {
   TEST_CASE("F3, M3, F3B, F3A, M3B refuse a negative frequency or a non-finite load (100) and a wrong count (101)") {
     const spatial_load_parameters negative_f{1, 0, 0, 1, 0, 0, -2.0, 0};
     const spatial_load_parameters infinite{std::numeric_limits<double>::infinity(), 0, 0, 0, 0, 0, 1.0, 0};
-    model<rigid_body, spatial_force, spatial_torque, body_force, body_torque, offset_force> m0;
+    spatial_elements_model m0;
     for (int which = 0; which < 5; ++which)
       for (int bad = 0; bad < 2; ++bad) {
         const spatial_load_parameters lp = bad == 0 ? negative_f : infinite;
         const char* mention = bad == 0 ? "frequency f" : "must be finite";
-        model<rigid_body, spatial_force, spatial_torque, body_force, body_torque, offset_force> m;
+        spatial_elements_model m;
         const auto x = m.add_dofs(3);
         const rotation_node r = m.add_rotation_node("r");
         m.add<rigid_body>("body", body(1, 1, 1, 1), x[0], x[1], x[2], r);
@@ -457,7 +461,7 @@ TEST_SUITE("spatial/elements") {
     check_error(error_from([&] { m0.add_by_name("F3A", "nF3A", d, seven); }), error_code::parameter_count, "F3A",
                 "nF3A", "got 7 parameters");
     // F3A's offset must be finite as well.
-    model<rigid_body, offset_force> m1;
+    spatial_elements_model m1;
     const auto x1 = m1.add_dofs(3);
     const rotation_node r1 = m1.add_rotation_node("r");
     m1.add<rigid_body>("body", body(1, 1, 1, 1), x1[0], x1[1], x1[2], r1);
