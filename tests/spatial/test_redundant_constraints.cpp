@@ -106,7 +106,7 @@ TEST_SUITE("spatial/redundant constraints") {
     // K = k [[1, -1, 0], [-1, 2, -1], [0, -1, 1]] has the left null vector (1, 1, 1): a rigid
     // translation of the chain that no element resists. The old message (a DOF needs stiffness,
     // viscosity or mass, or a support) stays, with the three DOFs named.
-    redundant_constraints_model m;
+    redc_model m;
     const dof a = m.add_dof("a"), b = m.add_dof("b"), c = m.add_dof("c");
     m.add<linear_spring>("ab", {100.0}, a, b);
     m.add<linear_spring>("bc", {100.0}, b, c);
