@@ -26,11 +26,14 @@ double trapezoidal_decay_bound(double h, double tau, double t) {
 }
 }  // namespace
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using circuits_model = pradis::model<voltage_dc, resistor, capacitor, inductor, initial_velocity>;
 TEST_SUITE("electric/circuits") {
   TEST_CASE("RC charging: the capacitor voltage is V (1 - exp(-t/RC)) and its current V/R exp(-t/RC)") {
     // KCL at the capacitor node: C v' + (v - V)/R = 0, v(0) = 0 => v = V (1 - e^{-t/RC}).
     const double big_v = 10.0, r = 1e3, c = 1e-6, tau = r * c, h = 2e-5, end = 5e-3;
-    model<voltage_dc, resistor, capacitor> md;
+    circuits_model md;
     const dof in = md.add_dof("in"), out = md.add_dof("out");
     const auto src = md.add<voltage_dc>("V", {big_v}, in);
     md.add<resistor>("R", {r}, in, out);
@@ -58,7 +61,7 @@ TEST_SUITE("electric/circuits") {
     // Mesh equation L i' + R i = V, i(0) = 0. The flux linkage of the node between R and L
     // obeys u' = v = V - R u / L, so the trapezoidal bound of the decay applies with tau = L/R.
     const double big_v = 5.0, r = 10.0, l = 0.1, tau = l / r, h = 2e-4, end = 0.05;
-    model<voltage_dc, resistor, inductor> md;
+    circuits_model md;
     const dof in = md.add_dof("in"), mid = md.add_dof("mid");
     md.add<voltage_dc>("V", {big_v}, in);
     md.add<resistor>("R", {r}, in, mid);
@@ -84,7 +87,7 @@ TEST_SUITE("electric/circuits") {
     // 0 <= w - wd <= w^3 h^2 / 12.
     const double l = 2e-3, c = 5e-6, v0 = 3.0, w = 1 / std::sqrt(l * c), h = 2e-6, end = 4e-3;
     const double wd = trapezoidal_frequency(w, h);
-    model<capacitor, inductor, initial_velocity> md;
+    circuits_model md;
     const dof n = md.add_dof("tank");
     md.add<capacitor>("C", {c}, n, md.ground());
     md.add<inductor>("L", {l, 0.0}, n, md.ground());
@@ -117,7 +120,7 @@ TEST_SUITE("electric/circuits") {
     const double big_v = 1.0, r = 20.0, l = 0.01, c = 1e-5, alpha = r / (2 * l);
     const double wd = std::sqrt(1 / (l * c) - alpha * alpha), end = 0.01;
     const auto run = [&](double h) {
-      model<voltage_dc, resistor, inductor, capacitor> md;
+      circuits_model md;
       const dof n1 = md.add_dof("n1"), n2 = md.add_dof("n2"), n3 = md.add_dof("n3");
       md.add<voltage_dc>("V", {big_v}, n1);
       md.add<resistor>("R", {r}, n1, n2);

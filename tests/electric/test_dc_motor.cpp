@@ -24,11 +24,14 @@ double decay_bound(double h, double tau, double t) {
 }
 }  // namespace
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using dc_motor_model = pradis::model<voltage_dc, dc_motor, point_mass, constant_force, resistor>;
 TEST_SUITE("electric/DCM") {
   TEST_CASE("stalled motor: the armature current rises as V/R (1 - exp(-t R/L)) to the stall torque k V / R") {
     // Shaft held (w = 0): L i' + R i = V, i(0) = 0; torque k i.
     const double big_v = 12.0, r = 2.0, l = 0.01, k = 0.05, tau = l / r, h = 1e-4, end = 0.1;
-    model<voltage_dc, dc_motor> md;
+    dc_motor_model md;
     const dof plus = md.add_dof("plus");
     md.add<voltage_dc>("V", {big_v}, plus);
     const auto m = md.add<dc_motor>("M", {r, l, k}, plus, md.ground(), md.ground());
@@ -46,7 +49,7 @@ TEST_SUITE("electric/DCM") {
   TEST_CASE("no-load run-up with L = 0: w = V/k (1 - exp(-t k^2/(R J))), the back-EMF tends to V") {
     // L = 0: i = (V - k w)/R, J w' = k i => w' = (V/k - w) / tau_m, tau_m = R J / k^2.
     const double big_v = 24.0, r = 1.5, k = 0.1, j = 2e-4, tau = r * j / (k * k), h = 1e-3, end = 0.3;
-    model<voltage_dc, dc_motor, point_mass> md;
+    dc_motor_model md;
     const dof plus = md.add_dof("plus"), shaft = md.add_dof("shaft");
     md.add<voltage_dc>("V", {big_v}, plus);
     const auto m = md.add<dc_motor>("M", {r, 0.0, k}, plus, md.ground(), shaft);
@@ -68,7 +71,7 @@ TEST_SUITE("electric/DCM") {
     // Steady state of L i' + R i + k w = V, J w' = k i - T: i = T/k, w = (V - R T/k)/k. The slower
     // eigenvalue of L J s^2 + R J s + k^2 = 0 is about -35 1/s: after 1 s the transient is e^{-35}.
     const double big_v = 24.0, r = 1.5, l = 2e-3, k = 0.1, j = 2e-4, load = 0.2;
-    model<voltage_dc, dc_motor, point_mass, constant_force> md;
+    dc_motor_model md;
     const dof plus = md.add_dof("plus"), shaft = md.add_dof("shaft");
     md.add<voltage_dc>("V", {big_v}, plus);
     const auto m = md.add<dc_motor>("M", {r, l, k}, plus, md.ground(), shaft);
@@ -93,7 +96,7 @@ TEST_SUITE("electric/DCM") {
                                        {{1.0, std::numeric_limits<double>::infinity(), 1.0}, "armature inductance L"}}};
     for (const auto& b : bad) {
       CAPTURE(b.mention);
-      model<voltage_dc, dc_motor, point_mass> md;
+      dc_motor_model md;
       const dof plus = md.add_dof(), shaft = md.add_dof();
       md.add<voltage_dc>("V", {1.0}, plus);
       md.add<dc_motor>("M", b.p, plus, md.ground(), shaft);
@@ -105,7 +108,7 @@ TEST_SUITE("electric/DCM") {
   }
 
   TEST_CASE("a DCM shaft on an electric node is refused, naming both") {
-    model<resistor, dc_motor> md;
+    dc_motor_model md;
     const dof n = md.add_dof("n");
     md.add<resistor>("R", {1.0}, n, md.ground());
     check_error(error_from([&] { md.add<dc_motor>("M", {1.0, 0.0, 1.0}, n, md.ground(), n); }),

@@ -31,6 +31,9 @@ double lambert_w(double x) {
 }
 }  // namespace
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using diode_switch_model = pradis::model<voltage_dc, resistor, diode, time_switch>;
 TEST_SUITE("electric/D") {
   TEST_CASE("diode and resistor: the operating point equals the Lambert-W solution") {
     // (V - vd)/R = Is (exp(vd/(n Vt)) - 1) with Gmin = 0 has the closed form (e.g. Banwell & Jayakumar,
@@ -42,7 +45,7 @@ TEST_SUITE("electric/D") {
     for (int k = 0; k < 100; ++k) w -= (w + std::log(w) - ln_arg) / (1 + 1 / w);
     const double vd = big_v + is * r - nvt * w;
     CHECK(lambert_w(std::exp(2.0)) == doctest::Approx(1.5571455989976114).epsilon(1e-14));  // W(e^2), tables
-    model<voltage_dc, resistor, diode> md;
+    diode_switch_model md;
     const dof in = md.add_dof("in"), anode = md.add_dof("anode");
     md.add<voltage_dc>("V", {big_v}, in);
     md.add<resistor>("R", {r}, in, anode);
@@ -59,7 +62,7 @@ TEST_SUITE("electric/D") {
   }
 
   TEST_CASE("reverse bias: the diode conducts -Is + Gmin vd") {
-    model<voltage_dc, resistor, diode> md;
+    diode_switch_model md;
     const dof in = md.add_dof("in"), cathode = md.add_dof("cathode");
     md.add<voltage_dc>("V", {10.0}, in);
     md.add<resistor>("R", {1e3}, in, cathode);
@@ -102,7 +105,7 @@ TEST_SUITE("electric/D") {
                                        {{1e-14, 1.0, 0.025, 0.8, -1.0}, "minimum conductance Gmin"}}};
     for (const auto& b : bad) {
       CAPTURE(b.mention);
-      model<resistor, diode> md;
+      diode_switch_model md;
       const dof n = md.add_dof();
       md.add<resistor>("R", {1.0}, n, md.ground());
       md.add<diode>("D1", b.p, n, md.ground());
@@ -122,7 +125,7 @@ TEST_SUITE("electric/SW") {
       const double s = smooth((t - t1) / tau) - smooth((t - t2) / tau);
       return std::pow(r1, 1 - s) * std::pow(r2, s);
     };
-    model<voltage_dc, time_switch, resistor> md;
+    diode_switch_model md;
     const dof in = md.add_dof("in"), out = md.add_dof("out");
     md.add<voltage_dc>("V", {big_v}, in);
     const auto sw = md.add<time_switch>("S", {r1, r2, t1, t2, tau}, in, out);
@@ -163,7 +166,7 @@ TEST_SUITE("electric/SW") {
                                        {{1.0, 1.0, inf, 1.0, 0.1}, "switching times"}}};
     for (const auto& b : bad) {
       CAPTURE(b.mention);
-      model<resistor, time_switch> md;
+      diode_switch_model md;
       const dof n = md.add_dof();
       md.add<resistor>("R", {1.0}, n, md.ground());
       md.add<time_switch>("S1", b.p, n, md.ground());

@@ -38,9 +38,13 @@ std::optional<error> run_error(M& md) {
 }
 }  // namespace
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using sources_model = pradis::model<current_dc, resistor, current_sine, capacitor, current_table, voltage_table,
+    voltage_sine, floating_voltage_dc, floating_voltage_sine, floating_voltage_table, voltage_dc>;
 TEST_SUITE("electric/sources") {
   TEST_CASE("IDC into a resistor to ground: v = I R from t = 0 on; W(2) is the voltage across the source") {
-    model<current_dc, resistor> md;
+    sources_model md;
     const dof n = md.add_dof("n");
     const auto src = md.add<current_dc>("I", {0.25}, n, md.ground());
     md.add<resistor>("R", {40.0}, n, md.ground());
@@ -58,7 +62,7 @@ TEST_SUITE("electric/sources") {
     // C v' = I(t): v is the integral of I / C; the trapezoidal rule's error on it is at most
     // t h^2 max|I''| / (12 C) = t h^2 A w^2 / (12 C).
     const double c = 1e-3, i0 = 0.01, amp = 0.05, f = 5.0, ph = 30 * deg, w = 2 * std::numbers::pi * f, h = 1e-3;
-    model<current_sine, capacitor> md;
+    sources_model md;
     const dof n = md.add_dof("n");
     md.add<current_sine>("I", {amp, f, 30.0, i0}, n, md.ground());
     md.add<capacitor>("C", {c}, n, md.ground());
@@ -75,7 +79,7 @@ TEST_SUITE("electric/sources") {
   TEST_CASE("ITAB charging a capacitor with steps on the breakpoints: v = integral of the table / C exactly") {
     // A piecewise-linear current is integrated exactly by the trapezoidal rule when every kink is a step end.
     const double c = 0.5;
-    model<current_table, capacitor> md;
+    sources_model md;
     const dof n = md.add_dof("n");
     const auto src = md.add<current_table>("I", table, n, md.ground());
     md.add<capacitor>("C", {c}, n, md.ground());
@@ -90,7 +94,7 @@ TEST_SUITE("electric/sources") {
   }
 
   TEST_CASE("VTAB prescribes its node: v = table(t), u = its exact integral, W(1) = v / R into a resistor") {
-    model<voltage_table, resistor> md;
+    sources_model md;
     const dof n = md.add_dof("n");
     const auto src = md.add<voltage_table>("V", table, n);
     md.add<resistor>("R", {4.0}, n, md.ground());
@@ -107,7 +111,7 @@ TEST_SUITE("electric/sources") {
 
   TEST_CASE("VSIN prescribes v = V0 + A sin(wt + ph) with u its exact integral; a resistor draws v / R") {
     const double amp = 3.0, f = 2.0, v0 = 1.0, ph = 45 * deg, w = 2 * std::numbers::pi * f, r = 2.0;
-    model<voltage_sine, resistor> md;
+    sources_model md;
     const dof n = md.add_dof("n");
     const auto src = md.add<voltage_sine>("V", {amp, f, 45.0, v0}, n);
     md.add<resistor>("R", {r}, n, md.ground());
@@ -127,7 +131,7 @@ TEST_SUITE("electric/sources") {
     // i = V / (R1 + R2), v_a = i R1, v_b = -i R2. The constraint row of the internal current has a zero
     // diagonal; the sparse LU handles it by static pivoting.
     const double big_v = 9.0, r1 = 100.0, r2 = 200.0, i = big_v / (r1 + r2);
-    model<floating_voltage_dc, resistor> md;
+    sources_model md;
     const dof a = md.add_dof("a"), b = md.add_dof("b");
     const auto src = md.add<floating_voltage_dc>("V", {big_v}, a, b);
     md.add<resistor>("R1", {r1}, a, md.ground());
@@ -144,7 +148,7 @@ TEST_SUITE("electric/sources") {
     // VSIN2 (+ at a, - at b) on top of VTAB2 (+ at b, - at ground): v_b = V_tab(t), v_a - v_b = V_sin(t)
     // exactly (constraint rows); one loop through R and C, so both internal currents equal (v_a - v_c) / R.
     const double r = 10.0, c = 0.01, h = 1e-3;
-    model<floating_voltage_sine, floating_voltage_table, resistor, capacitor> md;
+    sources_model md;
     const dof a = md.add_dof("a"), b = md.add_dof("b"), cn = md.add_dof("c");
     const auto vs = md.add<floating_voltage_sine>("Vs", {1.0, 2.0, 0.0, 0.5}, a, b);
     const auto vt = md.add<floating_voltage_table>("Vt", table, b, md.ground());
@@ -167,7 +171,7 @@ TEST_SUITE("electric/sources") {
   }
 
   TEST_CASE("a voltage source to ground on the ground is refused with code 90") {
-    model<voltage_dc, resistor> md;
+    sources_model md;
     md.add<resistor>("R", {1.0}, md.add_dof(), md.ground());
     md.add<voltage_dc>("V", {1.0}, md.ground());
     check_error(run_error(md), error_code::conflicting_initial, "VDC", "V", "ground");
@@ -175,73 +179,73 @@ TEST_SUITE("electric/sources") {
 
   TEST_CASE("bad source parameters stop the run with code 100 naming the type, the instance and the parameter") {
     SUBCASE("IDC") {
-      model<current_dc, resistor> md;
+      sources_model md;
       const dof n = md.add_dof();
       md.add<resistor>("R", {1.0}, n, md.ground());
       md.add<current_dc>("I", {inf}, n, md.ground());
       check_error(run_error(md), error_code::invalid_parameter, "IDC", "I", "current I0");
     }
     SUBCASE("ISIN") {
-      model<current_sine, resistor> md;
+      sources_model md;
       const dof n = md.add_dof();
       md.add<resistor>("R", {1.0}, n, md.ground());
       md.add<current_sine>("I", {1.0, -1.0, 0.0, 0.0}, n, md.ground());
       check_error(run_error(md), error_code::invalid_parameter, "ISIN", "I", "frequency f");
     }
     SUBCASE("ITAB: times not increasing") {
-      model<current_table, resistor> md;
+      sources_model md;
       const dof n = md.add_dof();
       md.add<resistor>("R", {1.0}, n, md.ground());
       md.add<current_table>("I", {{0.0, 1.0, 2.0, 1.0, 2.0, 3.0}}, n, md.ground());
       check_error(run_error(md), error_code::invalid_parameter, "ITAB", "I", "time t3");
     }
     SUBCASE("ITAB: odd count") {
-      model<current_table, resistor> md;
+      sources_model md;
       const dof n = md.add_dof();
       md.add<resistor>("R", {1.0}, n, md.ground());
       md.add<current_table>("I", {{0.0, 1.0, 2.0, 1.0, 3.0}}, n, md.ground());
       check_error(run_error(md), error_code::invalid_parameter, "ITAB", "I", "even number");
     }
     SUBCASE("ITAB: flat list with an odd count is code 101") {
-      model<current_table> md;
+      sources_model md;
       const std::array<dof, 2> d{md.add_dof(), md.ground()};
       const std::array<double, 5> five{0.0, 1.0, 2.0, 1.0, 3.0};
       check_error(flat_add_error<current_table>(md, "I", d, five), error_code::parameter_count, "ITAB", "I",
                   "got 5 parameters");
     }
     SUBCASE("VDC") {
-      model<voltage_dc, resistor> md;
+      sources_model md;
       const dof n = md.add_dof();
       md.add<resistor>("R", {1.0}, n, md.ground());
       md.add<voltage_dc>("V", {-inf}, n);
       check_error(run_error(md), error_code::invalid_parameter, "VDC", "V", "voltage V0");
     }
     SUBCASE("VSIN") {
-      model<voltage_sine, resistor> md;
+      sources_model md;
       const dof n = md.add_dof();
       md.add<resistor>("R", {1.0}, n, md.ground());
       md.add<voltage_sine>("V", {inf, 1.0, 0.0, 0.0}, n);
       check_error(run_error(md), error_code::invalid_parameter, "VSIN", "V", "amplitude");
     }
     SUBCASE("VTAB") {
-      model<voltage_table, resistor> md;
+      sources_model md;
       const dof n = md.add_dof();
       md.add<resistor>("R", {1.0}, n, md.ground());
       md.add<voltage_table>("V", {{1.0, 1.0, 0.5, 1.0}}, n);
       check_error(run_error(md), error_code::invalid_parameter, "VTAB", "V", "time t2");
     }
     SUBCASE("VDC2, VSIN2, VTAB2") {
-      model<floating_voltage_dc, floating_voltage_sine, floating_voltage_table, resistor> md;
+      sources_model md;
       const dof a = md.add_dof(), b = md.add_dof();
       md.add<resistor>("R", {1.0}, a, b);
       md.add<floating_voltage_dc>("V1", {inf}, a, md.ground());
       check_error(run_error(md), error_code::invalid_parameter, "VDC2", "V1", "voltage V0");
-      model<floating_voltage_sine, resistor> m2;
+      sources_model m2;
       const dof c = m2.add_dof();
       m2.add<resistor>("R", {1.0}, c, m2.ground());
       m2.add<floating_voltage_sine>("V2", {1.0, inf, 0.0, 0.0}, c, m2.ground());
       check_error(run_error(m2), error_code::invalid_parameter, "VSIN2", "V2", "frequency f");
-      model<floating_voltage_table, resistor> m3;
+      sources_model m3;
       const dof e = m3.add_dof();
       m3.add<resistor>("R", {1.0}, e, m3.ground());
       m3.add<floating_voltage_table>("V3", {{0.0, 1.0, 1.0, inf}}, e, m3.ground());

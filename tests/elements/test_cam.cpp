@@ -34,6 +34,9 @@ std::vector<double> harmonic_table(double h, int n) {
 }
 }  // namespace
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using cam_model = pradis::model<cam, point_mass, linear_spring, constant_force, velocity_source, initial_displacement>;
 TEST_SUITE("elements/CAM") {
   TEST_CASE("the periodic spline reproduces a harmonic lift with errors falling as h^4 (value) and h^2 (curvature)") {
     // Cubic spline interpolation error: |y - s| <= (5/384) h^4 max|y''''|,
@@ -78,7 +81,7 @@ TEST_SUITE("elements/CAM") {
     for (double ratio : {0.98, 1.02}) {
       CAPTURE(ratio);
       const double w = ratio * wc, turn = 2 * pi / w;
-      model<cam, point_mass, linear_spring, constant_force, velocity_source, initial_displacement> md;
+      cam_model md;
       const dof th = md.add_dof("theta"), y = md.add_dof("y");
       md.add<velocity_source>("drive", {0.0, 0.0, 0.0, w}, th);
       const auto cm = md.add<cam>("cam", {k, c, harmonic_table(h, 72)}, th, y);
@@ -150,7 +153,7 @@ TEST_SUITE("elements/CAM") {
     };
     for (const auto& b : cases) {
       CAPTURE(b.mention);
-      model<cam, point_mass> md;
+      cam_model md;
       const dof th = md.add_dof("theta"), y = md.add_dof("y");
       md.add<cam>("cam", b.q, th, y);
       md.add<point_mass>("follower", {1.0}, y);
@@ -160,7 +163,7 @@ TEST_SUITE("elements/CAM") {
                   b.mention);
     }
     // An odd flat count is code 101.
-    model<cam> md;
+    cam_model md;
     const dof th = md.add_dof("theta"), y = md.add_dof("y");
     const std::vector<dof> dofs{th, y};
     std::vector<double> flat{1e6, 1.0};

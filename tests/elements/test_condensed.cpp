@@ -161,6 +161,10 @@ struct beam2_cantilever {
 
 }  // namespace
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using condensed_model = pradis::model<point_mass, linear_spring, series, initial_displacement, star, star_kept,
+    initial_velocity>;
 TEST_SUITE("elements/condensed") {
   TEST_CASE("the passport of a condensed composite: the external DOFs, the parts' PAR, one state per condensed DOF") {
     static_assert(check_element<series>());
@@ -240,7 +244,7 @@ TEST_SUITE("elements/condensed") {
     // The same equation m u'' + keff u = 0 in both runs, same steps: only round-off in keff differs.
     const double k1 = 2.0e3, k2 = 3.0e3, keff = k1 * k2 / (k1 + k2), m = 0.5;
     const auto run = [&](bool condense) {
-      model<point_mass, linear_spring, series, initial_displacement> md;
+      condensed_model md;
       const dof x = md.add_dof("x");
       md.add<point_mass>("body", {m}, x);
       if (condense)
@@ -303,7 +307,7 @@ TEST_SUITE("elements/condensed") {
     // 3.3e-16 m, round-off, as both Newton iterations converge quadratically far below it. The condensed model needs
     // 600 global Newton iterations, the kept one 1513.
     const auto run = [&](bool condense) {
-      model<point_mass, star, star_kept, initial_velocity> md;
+      condensed_model md;
       std::vector<dof> x;
       for (int k = 0; k < 6; ++k) {
         x.push_back(md.add_dof("x" + std::to_string(k + 1)));

@@ -16,13 +16,16 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using forces_model = pradis::model<point_mass, constant_force, linear_spring, linear_damper, sine_force>;
 TEST_SUITE("elements/F") {
   TEST_CASE_TEMPLATE("a constant force accelerates a free mass from rest as u = P t^2 / (2 m), exactly for Newmark and Stoermer",
                      Scheme, pradis::newmark, pradis::stoermer) {
     // m u'' = P: u = P t^2 / (2 m), v = P t / m. Every Newmark-family scheme integrates a
     // constant acceleration exactly (its update is exact for quadratic u), so only round-off
     // and the Newton tolerance remain.
-    using M = model<point_mass, constant_force>;
+    using M = forces_model;
     const double m = 2.0, p = 3.0, h = 0.01, end = 2.0;
     M md;
     const dof x = md.add_dof("x");
@@ -48,7 +51,7 @@ TEST_SUITE("elements/F") {
     // w = sqrt(k/m) (any vibrations text). At t = 5, w = 10 the transient is 51 exp(-50) ~ 1e-20 of P/k;
     // the trapezoidal transient decays per step by (1 - wh/2)/(1 + wh/2) ~ exp(-wh), as fast.
     const double m = 1.0, k = 100.0, c = 2 * std::sqrt(k * m), p = 5.0;
-    model<point_mass, linear_spring, linear_damper, constant_force> md;
+    forces_model md;
     const dof x = md.add_dof("x");
     md.add<point_mass>("body", {m}, x);
     const auto spring = md.add<linear_spring>("spring", {k}, x, md.ground());
@@ -76,7 +79,7 @@ TEST_SUITE("elements/F") {
   }
 
   TEST_CASE("a flat F with a wrong parameter count is refused with code 101 naming F and the instance") {
-    model<constant_force> md;
+    forces_model md;
     const std::array<dof, 1> d{md.add_dof()};
     const std::array<double, 2> two{1.0, 2.0};
     check_error(flat_add_error<constant_force>(md, "load", d, two), error_code::parameter_count, "F", "load",
@@ -89,7 +92,7 @@ TEST_SUITE("elements/F") {
   TEST_CASE("a non-finite force stops the run with code 100 naming the instance and the force") {
     for (const double bad : {not_a_number, inf, -inf}) {
       CAPTURE(bad);
-      model<point_mass, constant_force> md;
+      forces_model md;
       const dof x = md.add_dof();
       md.add<point_mass>("body", {1.0}, x);
       md.add<constant_force>("load", {bad}, x);
@@ -115,7 +118,7 @@ TEST_SUITE("elements/FSIN") {
     const double ph = phase_deg * std::numbers::pi / 180, h = 1e-3, end = 2.0;
     const double ap = amp / (k - m * big_w * big_w), c1 = -p0 / k - ap * std::sin(ph), c2 = -ap * big_w * std::cos(ph) / w;
     const double third = w * w * w * std::hypot(c1, c2) + std::abs(ap) * std::pow(big_w, 3) * std::max(1.0, big_w / w);
-    model<point_mass, linear_spring, sine_force> md;
+    forces_model md;
     const dof x = md.add_dof("x");
     md.add<point_mass>("body", {m}, x);
     md.add<linear_spring>("spring", {k}, x, md.ground());
@@ -141,7 +144,7 @@ TEST_SUITE("elements/FSIN") {
     const double freq = 1.0, smax = 0.1;
     for (const bool ignore : {false, true}) {
       CAPTURE(ignore);
-      model<point_mass, linear_spring, sine_force> md;
+      forces_model md;
       const dof x = md.add_dof();
       md.add<point_mass>("body", {1.0}, x);
       md.add<linear_spring>("spring", {1.0}, x, md.ground());
@@ -167,7 +170,7 @@ TEST_SUITE("elements/FSIN") {
     // zero step evaluates every element (FSIN recommends 1/(20 f) there), so the first step
     // must not exceed it either.
     const double freq = 1.0;
-    model<point_mass, linear_spring, sine_force> md;
+    forces_model md;
     const dof x = md.add_dof();
     md.add<point_mass>("body", {1.0}, x);
     md.add<linear_spring>("spring", {1.0}, x, md.ground());
@@ -181,7 +184,7 @@ TEST_SUITE("elements/FSIN") {
   }
 
   TEST_CASE("a flat FSIN with a wrong parameter count is refused with code 101 naming FSIN and the instance") {
-    model<sine_force> md;
+    forces_model md;
     const std::array<dof, 1> d{md.add_dof()};
     const std::array<double, 3> three{1.0, 2.0, 3.0};
     check_error(flat_add_error<sine_force>(md, "drive", d, three), error_code::parameter_count, "FSIN", "drive",
@@ -191,7 +194,7 @@ TEST_SUITE("elements/FSIN") {
   TEST_CASE("a negative or non-finite frequency stops the run with code 100 naming the instance and the frequency") {
     for (const double bad : {-1.0, not_a_number, inf}) {
       CAPTURE(bad);
-      model<point_mass, sine_force> md;
+      forces_model md;
       const dof x = md.add_dof();
       md.add<point_mass>("body", {1.0}, x);
       md.add<sine_force>("drive", {1.0, bad, 0.0, 0.0}, x);
@@ -205,7 +208,7 @@ TEST_SUITE("elements/FSIN") {
     const std::array<sine_force::parameters, 3> bad{{{inf, 1.0, 0.0, 0.0}, {1.0, 1.0, not_a_number, 0.0},
                                                      {1.0, 1.0, 0.0, -inf}}};
     for (const auto& p : bad) {
-      model<point_mass, sine_force> md;
+      forces_model md;
       const dof x = md.add_dof();
       md.add<point_mass>("body", {1.0}, x);
       md.add<sine_force>("drive", p, x);

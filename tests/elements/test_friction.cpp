@@ -74,6 +74,10 @@ std::optional<error> run_error(typename E::parameters p) {
 }
 }  // namespace
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using friction_model = pradis::model<point_mass, friction, constant_force, linear_spring, initial_displacement,
+    velocity_source, gear, linear_damper, belt>;
 TEST_SUITE("elements/FRICT") {
   TEST_CASE("a block on a slope steeper than its friction angle does not hold, below it holds without creep") {
     // Block of mass m on a slope of angle alpha: the slope component m g sin(alpha)
@@ -88,7 +92,7 @@ TEST_SUITE("elements/FRICT") {
       // (h sqrt(ks/m) = 0.22): the stuck transient's force peaks near
       // P (1 + e^-2) (critically damped step response), below Fs = 1.37 P.
       const double mu = 0.5, ks = 1e5, cs = 2 * std::sqrt(ks * m);
-      model<point_mass, friction, constant_force> md;
+      friction_model md;
       const dof x = md.add_dof("x");
       md.add<point_mass>("block", {m}, x);
       md.add<constant_force>("slope", {P}, x);
@@ -114,7 +118,7 @@ TEST_SUITE("elements/FRICT") {
     }
     SUBCASE("mu = 0.2 < tan(20 deg): slides with a = g (sin - mu cos) from the first step") {
       const double mu = 0.2, fc = mu * N, A = g_n * (std::sin(alpha) - mu * std::cos(alpha));
-      model<point_mass, friction, constant_force> md;
+      friction_model md;
       const dof x = md.add_dof("x");
       md.add<point_mass>("block", {m}, x);
       md.add<constant_force>("slope", {P}, x);
@@ -161,7 +165,7 @@ TEST_SUITE("elements/FRICT") {
       bool end_stuck = false;
     };
     const auto run = [&](double h) {
-      model<point_mass, linear_spring, friction, initial_displacement> md;
+      friction_model md;
       const dof x = md.add_dof("x");
       md.add<point_mass>("mass", {m}, x);
       md.add<linear_spring>("spring", {k}, x, md.ground());
@@ -226,7 +230,7 @@ TEST_SUITE("elements/FRICT") {
     const double fs = 10.0, fc = 7.0, vs = 0.2, b = 0.5;
     for (const double v : {-0.5, -0.1, 0.05, 0.2, 1.0}) {
       CAPTURE(v);
-      model<friction, velocity_source> md;
+      friction_model md;
       const dof x = md.add_dof("x");
       const auto drive = md.add<velocity_source>("drive", {0.0, 0.0, 0.0, v}, x);
       const auto fr = md.add<friction>("contact", {fs, fc, vs, b, 1e6, 0.0, 1e-6}, md.ground(), x);
@@ -334,7 +338,7 @@ TEST_SUITE("elements/GEAR") {
     for (const double r : {-2.0, 0.5}) {
       CAPTURE(r);
       const double w1 = 3.0, J2 = 0.01, k = 1e4, TL = 4.0, c = std::sqrt(k * J2);  // zeta = 0.5 about shaft 2
-      model<point_mass, gear, velocity_source, constant_force> md;
+      friction_model md;
       const dof a = md.add_dof("shaft1"), b = md.add_dof("shaft2");
       const auto drive = md.add<velocity_source>("drive", {0.0, 0.0, 0.0, w1}, a);
       md.add<point_mass>("J2", {J2}, b);
@@ -357,7 +361,7 @@ TEST_SUITE("elements/GEAR") {
     // Before, the torque is exactly zero and shaft 2 does not move at all.
     const double r = 2.0, w1 = 1.0, b = 0.0205, J2 = 0.01, k = 1e4, c = 2 * std::sqrt(k * J2), cl = 0.05, h = 1e-4;
     const double tc = b / (std::abs(r) * w1);
-    model<point_mass, gear, velocity_source, linear_damper> md;
+    friction_model md;
     const dof a = md.add_dof("shaft1"), s2 = md.add_dof("shaft2");
     md.add<linear_damper>("load", {cl}, s2, md.ground());  // a viscous load: no torque at rest
     md.add<velocity_source>("drive", {0.0, 0.0, 0.0, w1}, a);
@@ -424,7 +428,7 @@ TEST_SUITE("elements/BELT") {
       // (W - m1 a) = E (P + m2 a) when end 1 is tight, E (W - m1 a) = P + m2 a when end 2 is.
       const double a = !slips ? 0.0 : (factor > 0 ? (W - E * P) / (m1 + E * m2) : (W * E - P) / (E * m1 + m2));
       const double T1 = W - m1 * a, T2 = P + m2 * a;
-      model<point_mass, belt, constant_force, initial_displacement> md;
+      friction_model md;
       const dof e1 = md.add_dof("end1"), e2 = md.add_dof("end2");
       md.add<point_mass>("load", {m1}, e1);
       md.add<constant_force>("weight", {W}, e1);

@@ -26,11 +26,15 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using mass_spring_damper_model = pradis::model<point_mass, linear_spring, initial_displacement, initial_velocity,
+    linear_damper>;
 TEST_SUITE("elements/MASS") {
   TEST_CASE("a mass on a spring oscillates as u0 cos(wt) + v0/w sin(wt) within the trapezoidal phase error") {
     // Undamped oscillator m u'' + k u = 0: u = u0 cos(wt) + v0/w sin(wt), w = sqrt(k/m).
     const double m = 0.5, w = 2 * std::numbers::pi, k = m * w * w, u0 = 0.1, v0 = 0.3, h = 1e-3, end = 1.0;
-    model<point_mass, linear_spring, initial_displacement, initial_velocity> md;
+    mass_spring_damper_model md;
     const dof x = md.add_dof("x");
     md.add<point_mass>("body", {m}, x);
     md.add<linear_spring>("spring", {k}, x, md.ground());
@@ -80,7 +84,7 @@ TEST_SUITE("elements/MASS") {
   }
 
   TEST_CASE("a flat MASS with a wrong parameter count is refused with code 101 naming MASS and the instance") {
-    model<point_mass> md;
+    mass_spring_damper_model md;
     const std::array<dof, 1> d{md.add_dof()};
     const std::array<double, 2> two{1.0, 2.0};
     check_error(flat_add_error<point_mass>(md, "body", d, two), error_code::parameter_count, "MASS",
@@ -94,7 +98,7 @@ TEST_SUITE("elements/MASS") {
   }
 
   TEST_CASE("a negative mass stops the run with code 100 naming the instance and the mass") {
-    model<point_mass, linear_spring> md;
+    mass_spring_damper_model md;
     const dof x = md.add_dof();
     md.add<point_mass>("body", {-1.0}, x);
     md.add<linear_spring>("spring", {1.0}, x, md.ground());
@@ -106,7 +110,7 @@ TEST_SUITE("elements/MASS") {
   TEST_CASE("a non-finite mass (NaN or infinity) stops the run with code 100") {
     for (const double bad : {not_a_number, inf}) {
       CAPTURE(bad);
-      model<point_mass, linear_spring> md;
+      mass_spring_damper_model md;
       const dof x = md.add_dof();
       md.add<point_mass>("body", {bad}, x);
       md.add<linear_spring>("spring", {1.0}, x, md.ground());
@@ -124,7 +128,7 @@ TEST_SUITE("elements/SPRING") {
     // r = r0 cos(wt) + r0'/w sin(wt), w = sqrt(k/mu) (any mechanics text, two-body reduction).
     const double m1 = 1.0, m2 = 3.0, k = 12.0, mu = m1 * m2 / (m1 + m2), w = std::sqrt(k / mu);  // w = 4
     const double x10 = 0.05, v20 = 0.4, h = 1e-3, end = 2.0;
-    model<point_mass, linear_spring, initial_displacement, initial_velocity> md;
+    mass_spring_damper_model md;
     const dof d1 = md.add_dof("1"), d2 = md.add_dof("2");
     md.add<point_mass>("m1", {m1}, d1);
     md.add<point_mass>("m2", {m2}, d2);
@@ -169,7 +173,7 @@ TEST_SUITE("elements/SPRING") {
   }
 
   TEST_CASE("a flat SPRING with a wrong parameter count is refused with code 101 naming SPRING and the instance") {
-    model<linear_spring> md;
+    mass_spring_damper_model md;
     const std::array<dof, 2> d{md.add_dof(), md.ground()};
     const std::array<double, 2> two{1.0, 2.0};
     check_error(flat_add_error<linear_spring>(md, "spring", d, two), error_code::parameter_count,
@@ -177,7 +181,7 @@ TEST_SUITE("elements/SPRING") {
   }
 
   TEST_CASE("a negative stiffness stops the run with code 100 naming the instance and the stiffness") {
-    model<point_mass, linear_spring> md;
+    mass_spring_damper_model md;
     const dof x = md.add_dof();
     md.add<point_mass>("body", {1.0}, x);
     md.add<linear_spring>("spring", {-5.0}, x, md.ground());
@@ -189,7 +193,7 @@ TEST_SUITE("elements/SPRING") {
   TEST_CASE("a non-finite stiffness (NaN or infinity) stops the run with code 100") {
     for (const double bad : {not_a_number, inf}) {
       CAPTURE(bad);
-      model<point_mass, linear_spring> md;
+      mass_spring_damper_model md;
       const dof x = md.add_dof();
       md.add<point_mass>("body", {1.0}, x);
       md.add<linear_spring>("spring", {bad}, x, md.ground());
@@ -206,7 +210,7 @@ TEST_SUITE("elements/DAMPER") {
     // The trapezoidal rule gives v_n = v0 rho^n and, summing u_n = u_{n-1} + h (v_{n-1} + v_n)/2,
     // u_n = (v0/lambda)(1 - rho^n): the error bound of the header comment applies to both.
     const double m = 2.0, c = 3.0, lambda = c / m, v0 = 1.2, h = 0.01, end = 3.0;
-    model<point_mass, linear_damper, initial_velocity> md;
+    mass_spring_damper_model md;
     const dof x = md.add_dof("x");
     md.add<point_mass>("body", {m}, x);
     const auto damper = md.add<linear_damper>("damper", {c}, x, md.ground());
@@ -243,7 +247,7 @@ TEST_SUITE("elements/DAMPER") {
     // m1 v1' = c (v2 - v1), m2 v2' = -c (v2 - v1): m1 v1 + m2 v2 is constant and
     // vr = v2 - v1 obeys vr' = -(c/mu) vr, mu = m1 m2/(m1 + m2).
     const double m1 = 1.0, m2 = 3.0, c = 0.6, mu = m1 * m2 / (m1 + m2), lambda = c / mu, v10 = 2.0, h = 0.01;
-    model<point_mass, linear_damper, initial_velocity> md;
+    mass_spring_damper_model md;
     const dof d1 = md.add_dof("1"), d2 = md.add_dof("2");
     md.add<point_mass>("m1", {m1}, d1);
     md.add<point_mass>("m2", {m2}, d2);
@@ -268,7 +272,7 @@ TEST_SUITE("elements/DAMPER") {
   }
 
   TEST_CASE("a flat DAMPER with a wrong parameter count is refused with code 101 naming DAMPER and the instance") {
-    model<linear_damper> md;
+    mass_spring_damper_model md;
     const std::array<dof, 2> d{md.add_dof(), md.ground()};
     const std::array<double, 3> three{1.0, 2.0, 3.0};
     check_error(flat_add_error<linear_damper>(md, "damper", d, three), error_code::parameter_count,
@@ -276,7 +280,7 @@ TEST_SUITE("elements/DAMPER") {
   }
 
   TEST_CASE("a negative damping coefficient stops the run with code 100 naming the instance and the coefficient") {
-    model<point_mass, linear_damper> md;
+    mass_spring_damper_model md;
     const dof x = md.add_dof();
     md.add<point_mass>("body", {1.0}, x);
     md.add<linear_damper>("damper", {-0.5}, x, md.ground());
@@ -288,7 +292,7 @@ TEST_SUITE("elements/DAMPER") {
   TEST_CASE("a non-finite damping coefficient (NaN or infinity) stops the run with code 100") {
     for (const double bad : {not_a_number, inf}) {
       CAPTURE(bad);
-      model<point_mass, linear_damper> md;
+      mass_spring_damper_model md;
       const dof x = md.add_dof();
       md.add<point_mass>("body", {1.0}, x);
       md.add<linear_damper>("damper", {bad}, x, md.ground());

@@ -18,13 +18,17 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using planar_model = pradis::model<planar_inertia, constant_force, initial_displacement, initial_velocity, planar_link,
+    point_mass, linear_damper, displacement_source, eccentric_mass>;
 TEST_SUITE("elements/MD") {
   TEST_CASE("a free MD body under constant forces and a constant moment moves on exact parabolas") {
     // m x'' = Fx, m y'' = Fy, J theta'' = Mz (Newton-Euler for a free rigid body, forces at the
     // centre of mass): each coordinate is q0 + q0' t + (load / inertia) t^2 / 2. Newmark
     // integrates constant accelerations exactly.
     const double m = 2.0, j = 0.25, fx = 3.0, fy = -2.0, mz = 0.5, x0 = 0.1, vy0 = 0.4, w0 = -1.0;
-    model<planar_inertia, constant_force, initial_displacement, initial_velocity> md;
+    planar_model md;
     const auto q = md.add_dofs(3, "q");
     md.add<planar_inertia>("body", {m, j}, q[0], q[1], q[2]);
     md.add<constant_force>("fx", {fx}, q[0]);
@@ -47,7 +51,7 @@ TEST_SUITE("elements/MD") {
   }
 
   TEST_CASE("a flat MD with a wrong parameter count is refused with code 101 naming MD and the instance") {
-    model<planar_inertia> md;
+    planar_model md;
     const auto q = md.add_dofs(3);
     const std::array<double, 3> three{1.0, 2.0, 3.0};
     check_error(flat_add_error<planar_inertia>(md, "body", q, three), error_code::parameter_count, "MD", "body",
@@ -63,7 +67,7 @@ TEST_SUITE("elements/MD") {
                           bad_case{{not_a_number, 0.1}, "mass m"}, bad_case{{1.0, not_a_number}, "moment of inertia J"}}) {
       const std::string mention = b.mention;
       CAPTURE(mention);
-      model<planar_inertia> md;
+      planar_model md;
       const auto q = md.add_dofs(3);
       md.add<planar_inertia>("body", b.p, q[0], q[1], q[2]);
       simulation sim(md);
@@ -80,7 +84,7 @@ TEST_SUITE("elements/MD") {
     for (const auto& b : {bad_case{{inf, 0.1}, "mass m"}, bad_case{{1.0, inf}, "moment of inertia J"}}) {
       const std::string mention = b.mention;
       CAPTURE(mention);
-      model<planar_inertia> md;
+      planar_model md;
       const auto q = md.add_dofs(3);
       md.add<planar_inertia>("body", b.p, q[0], q[1], q[2]);
       simulation sim(md);
@@ -104,7 +108,7 @@ struct stretch_run {
 stretch_run run_stretch(double angle) {
   const double l0 = 2.0, k = 100.0, m = 1.0, c = 20.0, p = 5.0, h = 0.01, end = 5.0;
   const double xa = 1.0, ya = 2.0, ex = std::cos(angle), ey = std::sin(angle);
-  model<planar_link, point_mass, linear_damper, constant_force> md;
+  planar_model md;
   const dof bx = md.add_dof("bx"), by = md.add_dof("by");
   const auto link =
       md.add<planar_link>("link", {xa, ya, xa + l0 * ex, ya + l0 * ey, k}, md.ground(), md.ground(), bx, by);
@@ -179,7 +183,7 @@ TEST_SUITE("elements/LINKD") {
   TEST_CASE("a link whose ends are driven into each other stops the run with code 75 naming the instance") {
     // XSRC on the x of A and of B: xA = 0.5 sin(pi t / 2), xB = 1 - 0.5 sin(pi t / 2): the length
     // 1 - sin(pi t / 2) reaches zero at t = 1 (a step lands there: 100 steps of 0.01).
-    model<planar_link, displacement_source> md;
+    planar_model md;
     const dof ax = md.add_dof("ax"), bx = md.add_dof("bx");
     md.add<planar_link>("link", {0.0, 0.0, 1.0, 0.0, 100.0}, ax, md.ground(), bx, md.ground());
     md.add<displacement_source>("pa", {0.5, 0.25, 0.0, 0.0}, ax);
@@ -195,7 +199,7 @@ TEST_SUITE("elements/LINKD") {
     // through zero at t = (2/pi) asin(2/3) = 0.4646, between the steps 0.46 and 0.47; afterwards B
     // is on the other side of A and the link's direction has flipped. The link went through zero
     // length during the run (help: "code 75 if the current length becomes close to zero").
-    model<planar_link, displacement_source> md;
+    planar_model md;
     const dof ax = md.add_dof("ax"), bx = md.add_dof("bx");
     md.add<planar_link>("link", {0.0, 0.0, 1.0, 0.0, 100.0}, ax, md.ground(), bx, md.ground());
     md.add<displacement_source>("pa", {0.75, 0.25, 0.0, 0.0}, ax);
@@ -207,7 +211,7 @@ TEST_SUITE("elements/LINKD") {
   }
 
   TEST_CASE("a flat LINKD with a wrong parameter count is refused with code 101 naming LINKD and the instance") {
-    model<planar_link> md;
+    planar_model md;
     const std::array<dof, 4> d{md.add_dof(), md.add_dof(), md.add_dof(), md.add_dof()};
     const std::array<double, 4> four{0.0, 0.0, 1.0, 0.0};
     check_error(flat_add_error<planar_link>(md, "link", d, four), error_code::parameter_count, "LINKD", "link",
@@ -224,7 +228,7 @@ TEST_SUITE("elements/LINKD") {
                           bad_case{{0.0, 0.0, 1.0, 0.0, not_a_number}, "stiffness k"}}) {
       const std::string mention = b.mention;
       CAPTURE(mention);
-      model<planar_inertia, planar_link> md;
+      planar_model md;
       const auto q = md.add_dofs(3);
       md.add<planar_inertia>("body", {1.0, 1.0}, q[0], q[1], q[2]);
       md.add<planar_link>("link", b.p, md.ground(), md.ground(), q[0], q[1]);
@@ -245,7 +249,7 @@ TEST_SUITE("elements/LINKD") {
       CAPTURE(b.p.k);
       CAPTURE(b.p.xb0);
       CAPTURE(b.p.ya0);
-      model<planar_inertia, planar_link> md;
+      planar_model md;
       const auto q = md.add_dofs(3);
       md.add<planar_inertia>("body", {1.0, 1.0}, q[0], q[1], q[2]);
       md.add<planar_link>("link", b.p, md.ground(), md.ground(), q[0], q[1]);
@@ -260,7 +264,7 @@ TEST_SUITE("elements/MEKS") {
   TEST_CASE("an eccentric mass on a fixed pivot set spinning by V0 rotates uniformly: theta = w0 t") {
     // Fixed axis, no torque: m R^2 theta'' = 0 (the M_z row with a_x = a_y = 0), so theta = w0 t.
     const double w0 = 3.0;
-    model<eccentric_mass, initial_velocity> md;
+    planar_model md;
     const dof th = md.add_dof("theta");
     md.add<eccentric_mass>("rotor", {1.5, 0.2, 30.0}, md.ground(), md.ground(), th);
     md.add<initial_velocity>("spin", {w0}, th);
@@ -278,7 +282,7 @@ TEST_SUITE("elements/MEKS") {
     // needs the centripetal force -m R w0^2 (cos phi, sin phi), supplied through the pivot DOFs:
     // W(1) of each source = the MEKS flow on its DOF (F_x, F_y of eccentric_mass.hpp with a = 0).
     const double m = 1.5, r = 0.2, alpha_deg = 30.0, w0 = 3.0;
-    model<eccentric_mass, initial_velocity, displacement_source> md;
+    planar_model md;
     const dof x = md.add_dof("x"), y = md.add_dof("y"), th = md.add_dof("theta");
     md.add<eccentric_mass>("rotor", {m, r, alpha_deg}, x, y, th);
     md.add<initial_velocity>("spin", {w0}, th);
@@ -312,7 +316,7 @@ TEST_SUITE("elements/MEKS") {
     // |x error| <= t h^2/12 rho w0^3 + sum_j h (t_j+1 h^2/12 rho w0^4) <= h^2/12 rho w0^3 (t + w0 (t^2 + t h)/2).
     const double big_m = 2.0, j = 0.05, m = 1.5, r = 0.2, alpha = 30 * deg, vx0 = 0.3, w0 = 2.0, h = 0.01;
     const double rho = m * r / (big_m + m);
-    model<planar_inertia, eccentric_mass, initial_velocity> md;
+    planar_model md;
     const auto q = md.add_dofs(3, "q");
     md.add<planar_inertia>("hub", {big_m, j}, q[0], q[1], q[2]);
     md.add<eccentric_mass>("rotor", {m, r, 30.0}, q[0], q[1], q[2]);
@@ -336,7 +340,7 @@ TEST_SUITE("elements/MEKS") {
   }
 
   TEST_CASE("a flat MEKS with a wrong parameter count is refused with code 101 naming MEKS and the instance") {
-    model<eccentric_mass> md;
+    planar_model md;
     const auto q = md.add_dofs(3);
     const std::array<double, 2> two{1.0, 0.2};
     check_error(flat_add_error<eccentric_mass>(md, "rotor", q, two), error_code::parameter_count, "MEKS", "rotor",
@@ -353,7 +357,7 @@ TEST_SUITE("elements/MEKS") {
                           bad_case{{not_a_number, 0.2, 0.0}, "mass m"}}) {
       const std::string mention = b.mention;
       CAPTURE(mention);
-      model<planar_inertia, eccentric_mass> md;
+      planar_model md;
       const auto q = md.add_dofs(3);
       md.add<planar_inertia>("hub", {1.0, 1.0}, q[0], q[1], q[2]);
       md.add<eccentric_mass>("rotor", b.p, q[0], q[1], q[2]);
@@ -371,7 +375,7 @@ TEST_SUITE("elements/MEKS") {
     for (const auto& b : {bad_case{{inf, 0.2, 0.0}, "mass m"}, bad_case{{1.0, inf, 0.0}, "eccentricity R"}}) {
       const std::string mention = b.mention;
       CAPTURE(mention);
-      model<planar_inertia, eccentric_mass> md;
+      planar_model md;
       const auto q = md.add_dofs(3);
       md.add<planar_inertia>("hub", {1.0, 1.0}, q[0], q[1], q[2]);
       md.add<eccentric_mass>("rotor", b.p, q[0], q[1], q[2]);

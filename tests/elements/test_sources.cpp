@@ -16,6 +16,9 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using sources_model = pradis::model<linear_spring, displacement_source, point_mass, velocity_source>;
 TEST_SUITE("elements/XSRC") {
   TEST_CASE("a spring divider driven by XSRC follows k2/(k1+k2) u_src and the reaction W(1) is k2 (u_src - u1)") {
     // Massless DOF 1 between a spring k1 to the ground and a spring k2 to the driven DOF 2:
@@ -23,7 +26,7 @@ TEST_SUITE("elements/XSRC") {
     // applies k2 (u2 - u1) = k1 k2/(k1+k2) u2 to DOF 2 (springs in series).
     const double k1 = 30.0, k2 = 10.0, amp = 0.2, freq = 2.0, phase_deg = 30.0, u0 = 0.05;
     const double big_w = 2 * std::numbers::pi * freq;
-    model<linear_spring, displacement_source> md;
+    sources_model md;
     const dof d1 = md.add_dof("free"), d2 = md.add_dof("driven");
     md.add<linear_spring>("k1", {k1}, d1, md.ground());
     md.add<linear_spring>("k2", {k2}, d1, d2);
@@ -58,7 +61,7 @@ TEST_SUITE("elements/XSRC") {
   TEST_CASE("a mass carried by XSRC needs the reaction W(1) = m a_src(t)") {
     // Newton's second law for the carried mass: the source applies m u''(t), u''(t) = -A W^2 sin(W t + ph).
     const double m = 3.0, amp = 0.1, freq = 2.0, phase_deg = 45.0, u0 = 0.3, big_w = 2 * std::numbers::pi * freq;
-    model<point_mass, displacement_source> md;
+    sources_model md;
     const dof d = md.add_dof("carried");
     md.add<point_mass>("body", {m}, d);
     const auto src = md.add<displacement_source>("src", {amp, freq, phase_deg, u0}, d);
@@ -76,7 +79,7 @@ TEST_SUITE("elements/XSRC") {
   }
 
   TEST_CASE("XSRC on the ground is refused with code 90 naming the source") {
-    model<point_mass, displacement_source> md;
+    sources_model md;
     const dof d = md.add_dof();
     md.add<point_mass>("body", {1.0}, d);
     md.add<displacement_source>("src", {0.1, 1.0, 0.0, 0.0}, md.ground());
@@ -86,7 +89,7 @@ TEST_SUITE("elements/XSRC") {
   }
 
   TEST_CASE("a flat XSRC with a wrong parameter count is refused with code 101 naming XSRC and the instance") {
-    model<displacement_source> md;
+    sources_model md;
     const std::array<dof, 1> d{md.add_dof()};
     const std::array<double, 3> three{1.0, 2.0, 3.0};
     check_error(flat_add_error<displacement_source>(md, "src", d, three), error_code::parameter_count, "XSRC", "src",
@@ -96,7 +99,7 @@ TEST_SUITE("elements/XSRC") {
   TEST_CASE("a negative or non-finite XSRC frequency stops the run with code 100 naming the instance") {
     for (const double bad : {-2.0, not_a_number, inf}) {
       CAPTURE(bad);
-      model<point_mass, displacement_source> md;
+      sources_model md;
       const dof d = md.add_dof();
       md.add<point_mass>("body", {1.0}, d);
       md.add<displacement_source>("src", {0.1, bad, 0.0, 0.0}, d);
@@ -110,7 +113,7 @@ TEST_SUITE("elements/XSRC") {
     const std::array<displacement_source::parameters, 3> bad{
         {{inf, 1.0, 0.0, 0.0}, {0.1, 1.0, not_a_number, 0.0}, {0.1, 1.0, 0.0, -inf}}};
     for (const auto& p : bad) {
-      model<point_mass, displacement_source> md;
+      sources_model md;
       const dof d = md.add_dof();
       md.add<point_mass>("body", {1.0}, d);
       md.add<displacement_source>("src", p, d);
@@ -126,7 +129,7 @@ TEST_SUITE("elements/VSRC") {
     // v = V0 + A sin(W t + ph), u(0) = 0  =>  u = V0 t - A (cos(W t + ph) - cos ph) / W,  a = A W cos(W t + ph).
     const double m = 3.0, amp = 0.2, freq = 1.0, phase_deg = 60.0, v0 = 0.3, big_w = 2 * std::numbers::pi * freq;
     const double ph = phase_deg * deg;
-    model<point_mass, velocity_source> md;
+    sources_model md;
     const dof d = md.add_dof("driven");
     md.add<point_mass>("body", {m}, d);
     const auto src = md.add<velocity_source>("src", {amp, freq, phase_deg, v0}, d);
@@ -146,7 +149,7 @@ TEST_SUITE("elements/VSRC") {
 
   TEST_CASE("VSRC with zero frequency moves its DOF at the constant speed V0 + A sin(phase)") {
     const double amp = 0.2, phase_deg = 30.0, v0 = 0.3, speed = v0 + amp * std::sin(phase_deg * deg);
-    model<point_mass, velocity_source> md;
+    sources_model md;
     const dof d = md.add_dof();
     md.add<point_mass>("body", {1.0}, d);
     md.add<velocity_source>("src", {amp, 0.0, phase_deg, v0}, d);
@@ -166,7 +169,7 @@ TEST_SUITE("elements/VSRC") {
     // trapezoidal error bound is that of the free oscillation of amplitude V/w: t h^2/12 w^3 (V/w)
     // (Peano bound in the norm sqrt(u^2 + u'^2/w^2), see test_forces.cpp).
     const double m = 2.0, k = 50.0, w = std::sqrt(k / m), speed = 0.8, h = 1e-3, end = 2.0;
-    model<point_mass, linear_spring, velocity_source> md;
+    sources_model md;
     const dof d1 = md.add_dof("towed"), d2 = md.add_dof("hook");
     md.add<point_mass>("body", {m}, d1);
     md.add<linear_spring>("rope", {k}, d1, d2);
@@ -187,7 +190,7 @@ TEST_SUITE("elements/VSRC") {
   }
 
   TEST_CASE("VSRC on the ground is refused with code 90 naming the source") {
-    model<point_mass, velocity_source> md;
+    sources_model md;
     md.add<point_mass>("body", {1.0}, md.add_dof());
     md.add<velocity_source>("src", {0.0, 0.0, 0.0, 1.0}, md.ground());
     simulation sim(md);
@@ -196,7 +199,7 @@ TEST_SUITE("elements/VSRC") {
   }
 
   TEST_CASE("a flat VSRC with a wrong parameter count is refused with code 101 naming VSRC and the instance") {
-    model<velocity_source> md;
+    sources_model md;
     const std::array<dof, 1> d{md.add_dof()};
     const std::array<double, 5> five{1.0, 2.0, 3.0, 4.0, 5.0};
     check_error(flat_add_error<velocity_source>(md, "src", d, five), error_code::parameter_count, "VSRC", "src",
@@ -215,7 +218,7 @@ TEST_SUITE("elements/VSRC") {
     for (const auto& b : bad) {
       const std::string mention = b.mention;
       CAPTURE(mention);
-      model<point_mass, velocity_source> md;
+      sources_model md;
       const dof d = md.add_dof();
       md.add<point_mass>("body", {1.0}, d);
       md.add<velocity_source>("src", b.p, d);

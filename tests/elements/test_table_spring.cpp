@@ -52,6 +52,9 @@ std::array<double, 2> force_slope(const table_spring& e, double d) {
 }
 }  // namespace
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using table_spring_model = pradis::model<point_mass, table_spring, initial_displacement, constant_force>;
 TEST_SUITE("elements/TSPRING") {
   TEST_CASE("a mass on a piecewise-linear table of k d oscillates with the period 2 pi sqrt(m/k)") {
     // The linear interpolation (and the end-slope extrapolation) of a linear law
@@ -62,7 +65,7 @@ TEST_SUITE("elements/TSPRING") {
     const double m = 0.5, k = 200.0, w = std::sqrt(k / m), u0 = 0.2, h = 1e-3, end = 2.0;
     std::vector<double> table;
     for (int i = -3; i <= 3; ++i) table.insert(table.end(), {0.05 * i, k * 0.05 * i});
-    model<point_mass, table_spring, initial_displacement> md;
+    table_spring_model md;
     const dof x = md.add_dof("x");
     md.add<point_mass>("body", {m}, x);
     md.add<table_spring>("spring", {0.0, 0.0, table}, md.ground(), x);
@@ -129,7 +132,7 @@ TEST_SUITE("elements/TSPRING") {
     // state is f(u) = F; with 128 segments on [0, 0.3] the deflection error of
     // the table is below 1e-6 (previous test), so u -> cubic_root(F) within that.
     const double m = 1.0, k = 100.0, k3 = 1e4, c = 40.0, F = 15.0;
-    model<point_mass, table_spring, constant_force> md;
+    table_spring_model md;
     const dof x = md.add_dof("x");
     md.add<point_mass>("body", {m}, x);
     md.add<table_spring>("spring", {1.0, c, cubic_table(k, k3, 0.0, 0.3, 128)}, md.ground(), x);
@@ -193,7 +196,7 @@ TEST_SUITE("elements/TSPRING") {
 
   TEST_CASE("bad tables are refused with code 100 naming TSPRING, the instance and the entry") {
     const auto run_error = [](table_spring::parameters p) {
-      model<point_mass, table_spring> md;
+      table_spring_model md;
       const dof x = md.add_dof("x");
       md.add<point_mass>("body", {1.0}, x);
       md.add<table_spring>("curve", std::move(p), md.ground(), x);
@@ -227,7 +230,7 @@ TEST_SUITE("elements/TSPRING") {
   }
 
   TEST_CASE("a flat TSPRING with an odd count or fewer than 2 points is refused with code 101") {
-    model<table_spring> md;
+    table_spring_model md;
     const std::array<dof, 2> d{md.add_dof(), md.add_dof()};
     const std::array<double, 7> odd{0, 0, 0.0, 0.0, 0.1, 1.0, 0.2};
     check_error(flat_add_error<table_spring>(md, "odd", d, odd), error_code::parameter_count, "TSPRING", "odd",
