@@ -14,12 +14,17 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using hydraulic_actuators_model = pradis::model<hydraulic_cylinder, point_mass, velocity_source, initial_velocity,
+    valve_43, turbulent_orifice, hydraulic_volume, displacement_source, laminar_orifice, valve_22, linear_spring,
+    linear_damper, hydraulic_pump, relief_valve, check_valve, accumulator, constant_force>;
 TEST_SUITE("hydraulic/HCYL") {
   TEST_CASE("a constant chamber pressure accelerates a mass with the force A p: x = A p t^2 / (2 m)") {
     // m x'' = AA pA (pB = 0 on the tank): constant acceleration, reproduced exactly by the
     // trapezoidal rule. The supply delivers AA x' (pA is constant: no compression flow).
     const double aa = 2e-3, ab = 1e-3, pa = 10e5, m = 1000, h = 1e-3, end = 0.5;
-    model<hydraulic_cylinder, point_mass, velocity_source> md;
+    hydraulic_actuators_model md;
     const dof pa_dof = md.add_dof("pA"), x = md.add_dof("x");
     md.add<hydraulic_cylinder>("cyl", {aa, ab, 1.0, 0.1, 1e-4, 1e-4, oil_b, 1e8, 1e4, 1e-3}, pa_dof, md.ground(), x);
     md.add<point_mass>("load", {m}, x);
@@ -40,7 +45,7 @@ TEST_SUITE("hydraulic/HCYL") {
     const double aa = 2e-3, s0 = 0.1, va0 = 1e-4, m = 200, h = 1e-4;
     const double va = va0 + aa * s0, k = oil_b * aa * aa / va, w = std::sqrt(k / m);
     const double amp = 1e-5 * va / aa, v0 = amp * w, wd = trapezoidal_frequency(w, h);
-    model<hydraulic_cylinder, point_mass, initial_velocity> md;
+    hydraulic_actuators_model md;
     const dof pa = md.add_dof("pA"), x = md.add_dof("x");
     md.add<hydraulic_cylinder>("cyl", {aa, 1e-3, 1.0, s0, va0, 1e-4, oil_b, 0, 0, 1e-3}, pa, md.ground(), x);
     md.add<point_mass>("load", {m}, x);
@@ -69,7 +74,7 @@ TEST_SUITE("hydraulic/HCYL") {
     // Documented contact: beyond the engagement width w the stop force is ke * penetration, so
     // the static balance AA pA = ke (s - stroke) gives s = stroke + AA pA / ke.
     const double aa = 2e-3, pa = 50e5, ke = 1e8, stroke = 0.2;
-    model<hydraulic_cylinder, point_mass, velocity_source> md;
+    hydraulic_actuators_model md;
     const dof pa_dof = md.add_dof("pA"), x = md.add_dof("x");
     md.add<hydraulic_cylinder>("cyl", {aa, 1e-3, stroke, 0.19, 1e-4, 1e-4, oil_b, ke, 1e5, 1e-5}, pa_dof,
                                md.ground(), x);
@@ -92,7 +97,7 @@ TEST_SUITE("hydraulic/HV43") {
     const double k = cd * amax * std::sqrt(2 / oil_rho);
     for (const double side : {1.0, -1.0}) {
       CAPTURE(side);
-      model<valve_43, turbulent_orifice, hydraulic_volume, velocity_source, displacement_source> md;
+      hydraulic_actuators_model md;
       const dof p = md.add_dof("P"), a = md.add_dof("A"), b = md.add_dof("B"), x = md.add_dof("spool");
       md.add<hydraulic_volume>("line A", {.volume = 1e-5, .bulk_modulus = oil_b}, a);
       md.add<hydraulic_volume>("line B", {.volume = 1e-5, .bulk_modulus = oil_b}, b);
@@ -113,7 +118,7 @@ TEST_SUITE("hydraulic/HV43") {
   TEST_CASE("a centred 4/3 valve leaks equally to both sides: pA = pB = ps / 2 and no load flow") {
     // At x = 0 all four paths have the leakage area Al: P-A-T and P-B-T are equal dividers.
     const double cd = 0.7, amax = 1e-5, dpt = 1e3, ps = 90e5, al = 1e-8;
-    model<valve_43, laminar_orifice, hydraulic_volume, velocity_source> md;
+    hydraulic_actuators_model md;
     const dof p = md.add_dof("P"), a = md.add_dof("A"), b = md.add_dof("B");
     md.add<hydraulic_volume>("line A", {.volume = 1e-7, .bulk_modulus = oil_b}, a);
     md.add<hydraulic_volume>("line B", {.volume = 1e-7, .bulk_modulus = oil_b}, b);
@@ -135,7 +140,7 @@ TEST_SUITE("hydraulic/HV22") {
     const double alpha = cd * std::sqrt(2 / oil_rho);
     for (const double frac : {-0.5, 0.5, 2.0}) {
       CAPTURE(frac);
-      model<valve_22, velocity_source, displacement_source> md;
+      hydraulic_actuators_model md;
       const dof p = md.add_dof("p"), x = md.add_dof("spool");
       md.add<valve_22>("valve", {cd, amax, oil_rho, dpt, xmax, al}, p, md.ground(), x);
       md.add<velocity_source>("supply", {.offset = dp}, p);
@@ -156,7 +161,7 @@ TEST_SUITE("hydraulic/spool lag") {
     // follows as c(x / xmax) with c linear (slope 1 / 0.96) between 4 % and 96 % of the stroke.
     const double xmax = 1e-3, xc = 0.5e-3, k = 1e3, tau = 0.01, h = 1e-3;
     const double x = h / (2 * tau), rho = (1 - x) / (1 + x);
-    model<valve_22, linear_spring, linear_damper, displacement_source, velocity_source> md;
+    hydraulic_actuators_model md;
     const dof p = md.add_dof("p"), spool = md.add_dof("spool"), cmd = md.add_dof("command");
     md.add<valve_22>("valve", {0.7, 1e-5, oil_rho, 1e3, xmax, 0.0}, p, md.ground(), spool);
     md.add<linear_spring>("lag spring", {k}, cmd, spool);
@@ -194,7 +199,7 @@ TEST_SUITE("hydraulic/HRELIEF") {
     double lo = 0, hi = rp.crack + rp.band;
     for (int i = 0; i < 200; ++i) ((q_of(0.5 * (lo + hi)) < qq) ? lo : hi) = 0.5 * (lo + hi);
     const double p_exact = 0.5 * (lo + hi);
-    model<hydraulic_pump, hydraulic_volume, relief_valve, velocity_source> md;
+    hydraulic_actuators_model md;
     const dof shaft = md.add_dof("shaft"), p = md.add_dof("p");
     md.add<hydraulic_pump>("pump", {disp, 0, 0}, md.ground(), p, shaft);
     md.add<hydraulic_volume>("vol", {.volume = 1e-4, .bulk_modulus = oil_b}, p);
@@ -215,7 +220,7 @@ TEST_SUITE("hydraulic/HCHECK") {
     const double alpha = cp.cd * std::sqrt(2 / oil_rho);
     for (const double dp : {10e5, -10e5}) {
       CAPTURE(dp);
-      model<check_valve, velocity_source> md;
+      hydraulic_actuators_model md;
       const dof p = md.add_dof("p");
       md.add<check_valve>("check", cp, p, md.ground());
       md.add<velocity_source>("supply", {.offset = dp}, p);
@@ -236,7 +241,7 @@ TEST_SUITE("hydraulic/HACC") {
     const double v0 = 1e-3, p0 = 20e5, n = 1.4, pa = 1e5, vd = 1e-5, q = 1e-4, end = 4.0, pi0 = 30e5;
     auto stored = [&](double pr) { return v0 * (1 - std::pow(p0 / (pa + pr), 1 / n)) + vd * pr / oil_b; };
     auto error_at = [&](double h) {
-      model<accumulator, constant_force, initial_velocity> md;
+      hydraulic_actuators_model md;
       const dof p = md.add_dof("p");
       md.add<accumulator>("acc", {v0, p0, n, pa, vd, oil_b}, p);
       md.add<constant_force>("inflow", {q}, p);

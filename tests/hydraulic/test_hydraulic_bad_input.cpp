@@ -31,6 +31,9 @@ void check_bad(const typename E::parameters& p, std::string_view mention) {
 }
 }  // namespace
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using hydraulic_bad_input_model = pradis::model<hydraulic_cylinder, velocity_source, accumulator, constant_force>;
 TEST_SUITE("hydraulic/bad input") {
   TEST_CASE("HVOL: non-positive volume or bulk modulus, air fraction outside [0, 1)") {
     check_bad<hydraulic_volume>({0.0, 1e9}, "volume V");
@@ -99,7 +102,7 @@ TEST_SUITE("hydraulic/bad input") {
 
   TEST_CASE("HCYL: a piston driven through the end stop empties chamber A: code 75") {
     // The piston is driven at 1 m/s towards s = 0; VA = VA0 + AA s vanishes at s = -VA0 / AA = -0.05 m.
-    model<hydraulic_cylinder, velocity_source> md;
+    hydraulic_bad_input_model md;
     const dof pa = md.add_dof("pA"), x = md.add_dof("x");
     md.add<hydraulic_cylinder>("cyl", {2e-3, 1e-3, 0.5, 0.1, 1e-4, 1e-4, 1e9, 0, 0, 1e-3}, pa, md.ground(), x);
     md.add<velocity_source>("drive", {.offset = -1.0}, x);
@@ -127,7 +130,7 @@ TEST_SUITE("hydraulic/bad input") {
     // Below the pre-charge the accumulator holds only its dead volume: a constant outflow then
     // pulls the pressure down linearly, through absolute zero.
     {
-      model<accumulator, constant_force> md;
+      hydraulic_bad_input_model md;
       const dof p = md.add_dof("p");
       md.add<accumulator>("acc", {1e-3, 20e5, 1.4, 1e5, 1e-5, 1e9}, p);
       md.add<constant_force>("outflow", {-1e-4}, p);

@@ -19,12 +19,16 @@ using namespace pradis;
 using namespace pradis::elements;
 using namespace pradis_element_tests;
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using hydraulic_passive_model = pradis::model<hydraulic_volume, constant_force, laminar_orifice, initial_velocity,
+    turbulent_orifice, velocity_source, hydraulic_line, hydraulic_pump, hydraulic_motor, point_mass>;
 TEST_SUITE("hydraulic/HVOL") {
   TEST_CASE("a volume fed by a constant flow builds up pressure p = B q t / V") {
     // Volume balance (V / B) dp/dt = q (Merritt, Hydraulic Control Systems, 1967, eq. 3-37 with
     // no outflow): p = B q t / V. Linear in t, so the trapezoidal rule reproduces it exactly.
     const double v = 1e-3, q = 1e-5, h = 1e-3, end = 0.05;
-    model<hydraulic_volume, constant_force> md;
+    hydraulic_passive_model md;
     const dof p = md.add_dof("p");
     md.add<hydraulic_volume>("vol", {.volume = v, .bulk_modulus = oil_b}, p);
     md.add<constant_force>("inflow", {q}, p);  // a flow source: q into the node
@@ -50,7 +54,7 @@ TEST_SUITE("hydraulic/HVOL") {
       return v * ((1 - alpha) * pr / oil_b + alpha * (1 - std::pow(pa / (pa + pr), 1 / n)));
     };
     auto error_at = [&](double h) {
-      model<hydraulic_volume, constant_force> md;
+      hydraulic_passive_model md;
       const dof p = md.add_dof("p");
       md.add<hydraulic_volume>("vol", {v, oil_b, alpha, pa, n}, p);
       md.add<constant_force>("inflow", {q}, p);
@@ -72,7 +76,7 @@ TEST_SUITE("hydraulic/HVOL") {
     // (V / B) p' = -p / R: p = p0 exp(-t B / (V R)).
     const double v = 2e-4, r = 1e10, p0 = 1e7, h = 2e-4, end = 0.1;
     const double lambda = oil_b / (v * r), x = lambda * h / 2, rho = (1 - x) / (1 + x);
-    model<hydraulic_volume, laminar_orifice, initial_velocity> md;
+    hydraulic_passive_model md;
     const dof p = md.add_dof("p");
     md.add<hydraulic_volume>("vol", {.volume = v, .bulk_modulus = oil_b}, p);
     md.add<laminar_orifice>("orifice", {r}, p, md.ground());
@@ -100,7 +104,7 @@ TEST_SUITE("hydraulic/HORT") {
     // Bernoulli with a discharge coefficient (Merritt 1967, eq. 2-20). The pressure is prescribed
     // by a velocity source (VSRC: a prescribed potential); its reaction is the flow it supplies.
     const double cd = 0.62, area = 2e-6, dp = 50e5, dpt = 1e3;
-    model<turbulent_orifice, velocity_source> md;
+    hydraulic_passive_model md;
     const dof p = md.add_dof("p");
     md.add<turbulent_orifice>("orifice", {cd, area, oil_rho, dpt}, p, md.ground());
     md.add<velocity_source>("supply", {.offset = dp}, p);
@@ -154,7 +158,7 @@ TEST_SUITE("hydraulic/HLINE") {
     const double area = std::numbers::pi * d * d / 4, inert = oil_rho * l / area, cap = area * l / oil_b;
     const double w = 1 / std::sqrt(inert * cap / 2), wd = trapezoidal_frequency(w, h);
     const double period = 2 * std::numbers::pi / w;
-    model<hydraulic_line, initial_velocity> md;
+    hydraulic_passive_model md;
     const dof p = md.add_dof("p");
     md.add<hydraulic_line>("line", {l, d, oil_b, oil_rho, mu}, md.ground(), p);
     md.add<initial_velocity>("p0", {p0}, p);
@@ -183,7 +187,7 @@ TEST_SUITE("hydraulic/HLINE") {
     // steady state q = p1 / (R + R2), p2 = R2 q (the inertance carries no pressure drop).
     const double l = 2, d = 0.008, mu = 0.03, p1 = 20e5, r2 = 5e10;
     const double r = 128 * mu * l / (std::numbers::pi * std::pow(d, 4));
-    model<hydraulic_line, laminar_orifice, velocity_source> md;
+    hydraulic_passive_model md;
     const dof a = md.add_dof("a"), b = md.add_dof("b");
     md.add<hydraulic_line>("line", {l, d, oil_b, oil_rho, mu}, a, b);
     md.add<laminar_orifice>("load", {r2}, b, md.ground());
@@ -207,7 +211,7 @@ TEST_SUITE("hydraulic/HPUMP") {
     const double k = cd * area * std::sqrt(2 / oil_rho), qq = disp * w;
     const double k4 = std::pow(k, 4), q4 = std::pow(qq, 4);
     const double p_exact = std::sqrt((q4 + std::sqrt(q4 * q4 + 4 * k4 * q4 * dpt * dpt)) / (2 * k4));
-    model<hydraulic_pump, hydraulic_volume, turbulent_orifice, velocity_source> md;
+    hydraulic_passive_model md;
     const dof shaft = md.add_dof("shaft"), p = md.add_dof("p");
     md.add<hydraulic_pump>("pump", {disp, 0, 0}, md.ground(), p, shaft);
     md.add<hydraulic_volume>("vol", {.volume = 1e-4, .bulk_modulus = oil_b}, p);
@@ -245,7 +249,7 @@ TEST_SUITE("hydraulic/HMOTOR") {
     // J w' = D p - cf w: w = (D p / cf) (1 - exp(-t cf / J)); trapezoidal: w_n = w_ss (1 - rho^n).
     const double d = 5e-6, cf = 0.02, j = 0.01, pr = 50e5, gl = 1e-12, h = 1e-3, end = 2;
     const double w_ss = d * pr / cf, lambda = cf / j, x = lambda * h / 2, rho = (1 - x) / (1 + x);
-    model<hydraulic_motor, point_mass, velocity_source> md;
+    hydraulic_passive_model md;
     const dof shaft = md.add_dof("shaft"), p = md.add_dof("p");
     md.add<hydraulic_motor>("motor", {d, gl, cf}, p, md.ground(), shaft);
     md.add<point_mass>("rotor", {j}, shaft);

@@ -132,6 +132,10 @@ using ast_newmark = simulation<M>;
 template <class M>
 using ast_bdf = bdf_simulation<M>;
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using algebraic_start_model = pradis::model<point_mass, linear_spring, initial_displacement, initial_velocity,
+    floating_voltage_dc, inductor, constant_force, planar_rigid_link>;
 /// The series springs: mass m at x on k1 to the massless node n, k2 from n to the ground, x(0) = x0,
 /// x'(0) = v0. Checks the start and, at every output, the lever rule and the exact motion; returns
 /// the largest |x - exact|. With `single`, the mass on one spring of the series stiffness instead
@@ -140,7 +144,7 @@ template <template <class> class Sim>
 double ast_series(double tol, bool single = false) {
   constexpr double m = 1, k1 = 100, k2 = 300, x0 = 0.1, v0 = 0.5;
   const double w = std::sqrt(k1 * k2 / (k1 + k2) / m), lever = k1 / (k1 + k2);
-  using M = model<point_mass, linear_spring, initial_displacement, initial_velocity>;
+  using M = algebraic_start_model;
   M md;
   const dof x = md.add_dof("x"), n = md.add_dof("n");
   md.add<point_mass>("m", {m}, x);
@@ -194,7 +198,7 @@ std::array<dof, 2> ast_displaced_series(M& md) {
 /// The DOF classes (checkpoint_data::dof_classes) of the series springs' mass and node after a BDF run to 0.1 s
 /// at DRLTX = DABSX = 1e-6.
 std::vector<double> ast_series_classes() {
-  using M = model<point_mass, linear_spring, initial_displacement>;
+  using M = algebraic_start_model;
   M md;
   const auto [x, n] = ast_displaced_series(md);
   bdf_simulation<M> sim(md);
@@ -255,7 +259,7 @@ TEST_SUITE("integrators/algebraic start") {
     // the source current's C entry, and the source's row fixes the node's potential v (its velocity, kind 6 of
     // the zero step); the current, the source's internal DOF, is a velocity-level multiplier (kind 4). The current ramps as i = V t / L, which
     // BDF's fixed steps of 1 ms integrate exactly: 5 A at t = 0.1 s.
-    using M = model<floating_voltage_dc, inductor>;
+    using M = algebraic_start_model;
     M md;
     const dof a = md.add_dof("a");
     md.add<floating_voltage_dc>("V", {5.0}, a, md.ground());
@@ -279,7 +283,7 @@ TEST_SUITE("integrators/algebraic start") {
     // t = 1e-11 (NEWMARK) and t = 0 (BDF).
     constexpr double k1 = 100, k2 = 400, f = 2;
     auto run = [&]<template <class> class Sim>() {
-      using M = model<linear_spring, constant_force>;
+      using M = algebraic_start_model;
       M md;
       const dof a = md.add_dof("a"), b = md.add_dof("b");
       md.add<linear_spring>("k1", {k1}, a, md.ground());
@@ -317,7 +321,7 @@ TEST_SUITE("integrators/algebraic start") {
     // x(0) = 0.1: m(0) = k1 x(0) / (k1 + k2) = 0.025. Fixed steps of 1 ms then meet group 1's equations:
     // n = py k_p / (k_p + k_n) and, P being free to turn about the ground point, the springs in series
     // relax to py = n = 0.
-    using M = model<point_mass, linear_spring, planar_rigid_link, initial_displacement>;
+    using M = algebraic_start_model;
     M md;
     const dof px = md.add_dof("px"), py = md.add_dof("py"), n = md.add_dof("n");
     const dof x = md.add_dof("x"), mn = md.add_dof("m");
@@ -384,7 +388,7 @@ TEST_SUITE("integrators/algebraic start") {
     // x (mass) - k1 - n - k2 - ground, and p - k3 - q with nothing else on p and q: dF/du on (n, p, q) is
     // singular (p and q float). The warning names sparse_lu's code 131; the first step's Newton matrix is
     // singular too, so the run ends with code 131 at t = 0.
-    using M = model<point_mass, linear_spring, initial_displacement>;
+    using M = algebraic_start_model;
     M md;
     const dof x = md.add_dof("x"), n = md.add_dof("n"), p = md.add_dof("p"), q = md.add_dof("q");
     md.add<point_mass>("m", {1.0}, x);
@@ -460,7 +464,7 @@ TEST_SUITE("integrators/algebraic start") {
 
   TEST_CASE("the warning on an initial displacement of a DOF with neither mass nor viscosity") {
     // X0 on the massless node: the node's equation decides its position at the zero step (lever rule).
-    using M = model<point_mass, linear_spring, initial_displacement>;
+    using M = algebraic_start_model;
     M md;
     const dof n = ast_displaced_series(md)[1];
     md.add<initial_displacement>("n0", {0.5}, n);

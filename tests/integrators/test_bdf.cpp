@@ -105,9 +105,13 @@ dof add_oscillator(M& m) {
   return x;
 }
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using bdf_model = pradis::model<point_mass, linear_spring, initial_displacement, quadratic_drag, initial_velocity,
+    linear_damper, hydraulic_volume, laminar_orifice, breaks_at>;
 /// The oscillator u'' + w^2 u = 0, u(0) = 1, v(0) = 0 (m = 1, k = w^2: period 1).
 struct oscillator {
-  model<point_mass, linear_spring, initial_displacement> m;
+  bdf_model m;
   dof x;
   oscillator() : x(m.add_dof("x")) {
     m.add<point_mass>("m", {1.0}, x);
@@ -250,7 +254,7 @@ TEST_SUITE("integrators/bdf") {
     double first = 0, last = 0;
     for (double tol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
       CAPTURE(tol);
-      model<point_mass, quadratic_drag, initial_velocity> m;
+      bdf_model m;
       const dof x = m.add_dof("x");
       m.add<point_mass>("m", {mass}, x);
       m.add<quadratic_drag>("drag", {c}, x);
@@ -281,7 +285,7 @@ TEST_SUITE("integrators/bdf") {
     // error 1.8e-6; without: 77, 91, 25, 26, 3.7e-6.
     const double mass = 2.0, c = 0.5, v0 = 3.0, end = 5.0, tol = 1e-6;
     auto run = [&](bool reform) {
-      model<point_mass, quadratic_drag, initial_velocity> m;
+      bdf_model m;
       const dof x = m.add_dof("x");
       m.add<point_mass>("m", {mass}, x);
       m.add<quadratic_drag>("drag", {c}, x);
@@ -333,7 +337,7 @@ TEST_SUITE("integrators/bdf") {
     // at order 1 from the state, so a stage continued from a checkpoint is the
     // uninterrupted second stage bit for bit; Newmark continues from the BDF state
     // (p = a) and BDF from Newmark's, each within its own error of the exact cosine.
-    using osc = model<point_mass, linear_spring, initial_displacement>;
+    using osc = bdf_model;
     const auto make = [](auto& m) { return add_oscillator(m); };
     osc m1, m2, m3, m4;
     const dof x = make(m1), x2 = make(m2), x3 = make(m3), x4 = make(m4);
@@ -370,7 +374,7 @@ TEST_SUITE("integrators/bdf") {
     CHECK(std::abs(back.u(x4) - std::cos(osc_w * 1.5)) < 2e-6);
 
     // Another model's checkpoint, and a damaged one, are refused; the driver is unchanged.
-    model<point_mass, linear_spring, initial_displacement, linear_damper> other;
+    bdf_model other;
     other.add<linear_damper>("c", {0.1}, make(other), other.ground());
     bdf_simulation foreign(other);
     std::istringstream in3(bytes);
@@ -396,7 +400,7 @@ TEST_SUITE("integrators/bdf") {
     // trip (the language's switch of scheme); the result must equal the run that
     // continues from the saved bytes bit for bit, and the exact cosine within
     // each method's error.
-    using osc = model<point_mass, linear_spring, initial_displacement>;
+    using osc = bdf_model;
     const auto make = [](auto& m) { return add_oscillator(m); };
     osc shared, viaf1, viaf2;
     const dof x = make(shared), y1 = make(viaf1), y2 = make(viaf2);
@@ -444,7 +448,7 @@ TEST_SUITE("integrators/bdf") {
       CHECK(e.code() == error_code::invalid_option);
       CHECK(e.message().find("before the first stage") != std::string::npos);
     }
-    model<point_mass, linear_spring, initial_displacement, linear_damper> other;
+    bdf_model other;
     other.add<linear_damper>("c", {0.1}, make(other), other.ground());
     bdf_simulation foreign(other);
     foreign.run(controlled(0.1, 1e-6, 0.1));
@@ -479,7 +483,7 @@ TEST_SUITE("integrators/bdf") {
     auto run = [&](const bdf_options& bo, const run_options& o, double x20, double beta, double& es, double& qf,
                    run_statistics& st) {
       const double qs0 = modal(ps, 1.0, x20), w = std::sqrt(lam_s), z = beta * w / 2, wd = w * std::sqrt(1 - z * z);
-      model<point_mass, linear_spring, linear_damper, initial_displacement> m;
+      bdf_model m;
       const dof x1 = m.add_dof("x1"), x2 = m.add_dof("x2");
       m.add<point_mass>("m1", {m1}, x1);
       m.add<point_mass>("m2", {m2}, x2);
@@ -534,7 +538,7 @@ TEST_SUITE("integrators/bdf") {
     const double v = 2e-4, b = 1.5e9, r = 1e13, p0 = 1e7, end = 30, tol = 1e-6;
     const double lambda = b / (v * r);
     auto run = [&](bool unit_scale, double& err_start, double& err_end, run_statistics& st) {
-      model<hydraulic_volume, laminar_orifice, initial_velocity> md;
+      bdf_model md;
       const dof p = md.add_dof("p");
       md.add<hydraulic_volume>("vol", {.volume = v, .bulk_modulus = b}, p);
       md.add<laminar_orifice>("orifice", {r}, p, md.ground());
@@ -639,7 +643,7 @@ TEST_SUITE("integrators/bdf") {
   }
 
   TEST_CASE("bad BDF options are refused with invalid_option and a clear message") {
-    model<point_mass, linear_spring, initial_displacement> m;
+    bdf_model m;
     const dof x = m.add_dof("x");
     m.add<point_mass>("m", {1.0}, x);
     m.add<linear_spring>("k", {1.0}, x, m.ground());
@@ -718,7 +722,7 @@ TEST_SUITE("integrators/bdf") {
   }
 
   TEST_CASE("PREDICT does not apply to BDF: invalid_option") {
-    model<point_mass, linear_spring> m;
+    bdf_model m;
     const dof x = m.add_dof("x");
     m.add<point_mass>("m", {1.0}, x);
     m.add<linear_spring>("k", {1.0}, x, m.ground());
@@ -747,7 +751,7 @@ TEST_SUITE("integrators/bdf") {
   }
 
   TEST_CASE("a step that keeps failing down to SMIN ends the run with the element's message") {
-    model<point_mass, breaks_at> m;
+    bdf_model m;
     const dof x = m.add_dof("x");
     m.add<point_mass>("m", {1.0}, x);
     m.add<breaks_at>("spring", {0.5}, x);

@@ -50,13 +50,16 @@ using namespace pradis::elements;
 
 namespace {
 
-using bdf3_chain_model = model<point_mass, planar_rigid_link, constant_force>;
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using bdf_index3_model = pradis::model<point_mass, planar_rigid_link, constant_force, velocity_source,
+    pradis_test::velocity_integrator>;
 constexpr double bdf3_g = 9.81;
 
 /// A chain of n links of length l, point masses m at the joints, hinged at the origin and
 /// released from rest along +X; x[i], y[i] the displacements of mass i from (l (i + 1), 0).
 struct bdf3_chain {
-  bdf3_chain_model m;
+  bdf_index3_model m;
   std::vector<dof> x, y;
   double l, mass;
   bdf3_chain(int n, double l_, double m_) : l(l_), mass(m_) {
@@ -147,7 +150,7 @@ TEST_SUITE("integrators/bdf index 3") {
     };
     auto run = [&]<class Solver>(Solver*) {
       bdf3_chain c(1, 1.0, 1.0);
-      bdf_simulation<bdf3_chain_model, Solver> sim(c.m);
+      bdf_simulation<bdf_index3_model, Solver> sim(c.m);
       const run_statistics st = sim.run(bdf3_options(quarter, 1e-7));
       if constexpr (std::is_same_v<Solver, dense_solve_only>) CHECK(sim.solver().solves > 2 * st.newton_iterations - 1);
       if constexpr (std::is_same_v<Solver, checked_sparse_lu>) CHECK(sim.solver().pairs >= st.newton_iterations);
@@ -247,7 +250,7 @@ TEST_SUITE("integrators/bdf index 3") {
     // The hinge moves along X at V = 0.7 m/s (VSRC); relative to it the pendulum moves as
     // the fixed one: at T/4 the mass is at (-L, ... ) below the hinge, i.e. at (V T/4, -L),
     // with velocity (V - sqrt(2 g L), 0).
-    model<point_mass, planar_rigid_link, constant_force, velocity_source> m;
+    bdf_index3_model m;
     const dof hx = m.add_dof("hx"), x = m.add_dof("x"), y = m.add_dof("y");
     constexpr double speed = 0.7;
     m.add<velocity_source>("drive", {0.0, 0.0, 0.0, speed}, hx);
@@ -296,7 +299,7 @@ TEST_SUITE("integrators/bdf index 3") {
     // evaluation at the converged state, must leave the run unchanged. The second model adds
     // a state-carrying element without flows (VINT, not a guard), which makes the driver
     // evaluate the converged state after every accepted step.
-    using vint_model = model<point_mass, planar_rigid_link, constant_force, pradis_test::velocity_integrator>;
+    using vint_model = bdf_index3_model;
     struct chain {
       vint_model m;
       std::vector<dof> d;

@@ -239,6 +239,10 @@ TEST_SUITE("integrators/bdf") {
   }
 }
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using bdf_rotations_model = pradis::model<elements::rigid_body, elements::initial_rotation, elements::body_torque,
+    elements::spatial_torque, elements::spherical_joint>;
 // The kept Newton matrix turned with the rotational nodes (rotated_jacobian.hpp,
 // bdf_options::rotated_jacobian).
 TEST_SUITE("integrators/bdf") {
@@ -250,7 +254,7 @@ TEST_SUITE("integrators/bdf") {
       int equation_of(int d) const { return d - 1; }
     };
     // A node with a global moment source (M3) on it: turned in the global frame.
-    model<elements::spatial_torque> m;
+    bdf_rotations_model m;
     const rotation_node node = m.add_rotation_node("r");
     m.add<elements::spatial_torque>("m", elements::spatial_torque::example(), node.q1, node.q2, node.q3);
     REQUIRE(node.q1.index == 1);
@@ -289,7 +293,7 @@ TEST_SUITE("integrators/bdf") {
     using elements::rigid_body;
     const rigid_body body({1.5, 2.0, 1.0, 0.6, 0.1, -0.05, 0.08, 0, 0, 0});
     REQUIRE(body.body_fixed_flows());
-    model<rigid_body> m;
+    bdf_rotations_model m;
     const std::vector<dof> x = m.add_dofs(3, "x");
     const rotation_node node = m.add_rotation_node("r");
     m.add<rigid_body>("body", body.p, x[0], x[1], x[2], node);
@@ -406,7 +410,7 @@ TEST_SUITE("integrators/bdf") {
     // node, M3B, ROT0 (no flow). A global moment source (M3), an offset centre of
     // mass or a joint keep the global frame.
     using namespace elements;
-    using M = model<rigid_body, initial_rotation, body_torque, spatial_torque, spherical_joint>;
+    using M = bdf_rotations_model;
     auto body = [](M& m, rigid_body::parameters p) {
       const std::vector<dof> x = m.add_dofs(3, "x");
       const rotation_node r = m.add_rotation_node();

@@ -35,7 +35,10 @@ using namespace pradis::elements;
 
 namespace {
 
-using msd_model = model<point_mass, linear_spring, linear_damper, initial_displacement, initial_velocity>;
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using error_control_model = pradis::model<point_mass, linear_spring, linear_damper, initial_displacement,
+    initial_velocity, planar_rigid_link, constant_force>;
 
 using pradis_test::rel_newton;
 
@@ -47,7 +50,7 @@ struct result {
 /// u'' + w^2 u = 0, u(0) = 1, v(0) = 0, error control with DABSX = DRLTX = tol.
 template <class Scheme>
 result oscillator(Scheme scheme, double w, double t_end, double tol) {
-  msd_model m;
+  error_control_model m;
   const dof x = m.add_dof("x");
   m.add<point_mass>("mass", {1.0}, x);
   m.add<linear_spring>("spring", {w * w}, x, m.ground());
@@ -117,7 +120,7 @@ struct stiff_result {
 
 template <class Scheme>
 stiff_result stiff_run(Scheme scheme, double tol, double t_fast, double t_end) {
-  msd_model m;
+  error_control_model m;
   const dof x1 = m.add_dof("x1"), x2 = m.add_dof("x2");
   m.add<point_mass>("m1", {stiff_system::m1}, x1);
   m.add<point_mass>("m2", {stiff_system::m2}, x2);
@@ -238,7 +241,7 @@ TEST_CASE("error control: where the local error vanishes the step jumps from SMI
   // zero at every step. PRADIS's rule then proposes SMAX; max_step_growth (step_control.hpp)
   // bounds the growth only after the run's first error rejection (tested on a contact:
   // tests/spatial/test_sphere_contact.cpp, "CSPHPL: the Hunt-Crossley rebound ...").
-  msd_model m;
+  error_control_model m;
   const dof x = m.add_dof("x");
   m.add<point_mass>("mass", {1.0}, x);
   m.add<initial_velocity>("v0", {3.0}, x);
@@ -256,7 +259,7 @@ TEST_CASE("error control: where the local error vanishes the step jumps from SMI
 }
 
 TEST_CASE("error control: SMIN cannot reach an impossible tolerance -> step_too_small naming the DOF and the time") {
-  msd_model m;
+  error_control_model m;
   const dof x = m.add_dof("slider");
   m.add<point_mass>("mass", {1.0}, x);
   m.add<linear_spring>("spring", {100.0}, x, m.ground());
@@ -279,7 +282,7 @@ TEST_CASE("error control: SMIN cannot reach an impossible tolerance -> step_too_
 // CONTROL: an impossible tolerance (DABSX = 1e-30) with a floor of 1e-3: every
 // step is accepted at the floor, and the step after it is the floor again.
 TEST_CASE("error control: CONTROL puts a floor under the step (accepts at the floor instead of failing)") {
-  msd_model m;
+  error_control_model m;
   const dof x = m.add_dof("x");
   m.add<point_mass>("mass", {1.0}, x);
   m.add<linear_spring>("spring", {100.0}, x, m.ground());
@@ -295,7 +298,7 @@ TEST_CASE("error control: CONTROL puts a floor under the step (accepts at the fl
 TEST_CASE("error control options: DABSX, DRLTX, CONTROL out of range -> invalid_option naming the option") {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto run_with = [](run_options o) {
-    msd_model m;
+    error_control_model m;
     const dof x = m.add_dof("x");
     m.add<point_mass>("mass", {1.0}, x);
     m.add<linear_spring>("spring", {1.0}, x, m.ground());
@@ -324,7 +327,7 @@ TEST_CASE("error control options: DABSX, DRLTX, CONTROL out of range -> invalid_
   o.control = nan;
   expect_invalid_option([&] { run_with(o); }, "CONTROL", ">= 0");
   // Both zero is fine without error control (the tolerances are not used).
-  msd_model m;
+  error_control_model m;
   const dof x = m.add_dof("x");
   m.add<point_mass>("mass", {1.0}, x);
   m.add<linear_spring>("spring", {1.0}, x, m.ground());
@@ -345,7 +348,7 @@ TEST_CASE("error control options: DABSX, DRLTX, CONTROL out of range -> invalid_
 TEST_CASE("error control: a step far below the stage's steps gets no round-off floor (NEWMARK chain -> code 141)") {
   constexpr int n = 10;
   constexpr double l = 0.1, mass = 0.05, g = 9.81, end = 0.4;
-  model<point_mass, planar_rigid_link, constant_force> m;
+  error_control_model m;
   std::vector<dof> x, y;
   for (int i = 0; i < n; ++i) {
     x.push_back(m.add_dof("x" + std::to_string(i + 1)));

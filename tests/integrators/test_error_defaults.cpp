@@ -26,7 +26,10 @@ using namespace pradis::elements;
 
 namespace {
 
-using osc_model = model<point_mass, linear_spring, initial_displacement>;
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using error_defaults_model = pradis::model<point_mass, linear_spring, initial_displacement, planar_link,
+    constant_force>;
 
 struct osc_run {
   double error = 0;
@@ -38,7 +41,7 @@ struct osc_run {
 /// at t = 2 in the energy norm against cos(2 pi t).
 osc_run oscillator(const run_options& o) {
   const double w = 2 * std::numbers::pi;
-  osc_model m;
+  error_defaults_model m;
   const dof x = m.add_dof("x");
   m.add<point_mass>("mass", {1.0}, x);
   m.add<linear_spring>("spring", {w * w}, x, m.ground());
@@ -68,7 +71,7 @@ struct pendulum_run {
 /// Unit mass on a LINKD of stiffness k to the ground, released from the horizontal;
 /// error at T/4: |x| + | |v| / sqrt(2 g) - 1 |.
 pendulum_run stiff_pendulum(double k, const run_options& base) {
-  using M = model<point_mass, planar_link, constant_force>;
+  using M = error_defaults_model;
   const double g = 9.81;
   M m;
   const dof bx = m.add_dof("B.x"), by = m.add_dof("B.y");

@@ -30,13 +30,17 @@ namespace {
 constexpr double g = 9.81;
 }
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using linkd_mechanics_model = pradis::model<planar_inertia, planar_link, constant_force, linear_damper, point_mass,
+    initial_displacement>;
 TEST_CASE("LINKD static deflection under an axial force: elongation P/k, W(3) = P") {
   // Point A grounded, point B on an MD body (m = 2, J = 0.1, the manual's body 2),
   // k = 5e3 and P = 1e3 (manual 3.6.9 data), a critically damped DAMPER (c = 2
   // sqrt(k m)) from B's x and y DOFs to the ground so that the motion settles.
   // The static solution is a fixed point of the scheme; after t = 3 the
   // transient (decay rate >= sqrt(k/m) = 50 1/s) is below 1e-60.
-  using M = model<planar_inertia, planar_link, constant_force, linear_damper>;
+  using M = linkd_mechanics_model;
   const double k = 5e3, P = 1e3, mass = 2.0, c = 2.0 * std::sqrt(k * mass);
   struct geometry {
     double xa, ya, xb, yb;
@@ -77,7 +81,7 @@ TEST_CASE("LINKD static deflection under an axial force: elongation P/k, W(3) = 
 TEST_CASE("LINKD spring pendulum: vertical period 2 pi sqrt(m/k), swing period 2 pi sqrt(L/g)") {
   // A grounded at (0, 0); B carries a point mass m (MASS on its x and y DOFs),
   // gravity as F = -m g on y. Static length L = L0 + m g / k = 1 m.
-  using M = model<point_mass, planar_link, constant_force, initial_displacement>;
+  using M = linkd_mechanics_model;
   const double mass = 1.0, k = 100.0;  // vertical w = 10 rad/s; swing w = 3.13 rad/s (ratio 3.19, far from 2:1)
   const double l = 1.0, l0 = l - mass * g / k;
   const double h = 1e-3;
@@ -186,7 +190,7 @@ TEST_CASE("LINKD as a stiff simple pendulum: period against 4 K(k^2)/w") {
 
   // m = 1 (MASS on B's x and y), L = 1, A grounded at (0, 0), k = 1e8 (axial
   // frequency 1e4 rad/s), average-acceleration Newmark, h = 1e-3, released at rest.
-  using M = model<point_mass, planar_link, constant_force>;
+  using M = linkd_mechanics_model;
   const double mass = 1.0, l = 1.0, k = 1e8, h = 1e-3;
   const double w = std::sqrt(g / l);
   auto measure = [&](double theta0, double step, double periods) {
@@ -265,7 +269,7 @@ TEST_CASE("the manual's section 3.6.9 model: two MD bodies, LINKD, force; centre
   // exactly under Stoermer (v_n = v_{n-1} + h a_n, sum m a_n = F once Newton has
   // converged), and x_n = x_{n-1} + h (v_{n-1} + v_n)/2 integrates the linear
   // centre-of-mass velocity exactly: y_cm(t) = F t^2 / (2 (m1 + m2)), x_cm fixed.
-  using M = model<planar_inertia, planar_link, constant_force>;
+  using M = linkd_mechanics_model;
   M m;
   const auto d = m.add_dofs(6, "dof");
   m.add<planar_inertia>("Body 1", {1.0, 0.1}, d[0], d[1], d[2]);

@@ -23,10 +23,12 @@ using namespace pradis::elements;
 using pradis_test::tight_newton;
 
 namespace {
-using linear_model = model<point_mass, linear_spring, linear_damper, initial_displacement>;
-using two_body_model = model<planar_inertia, planar_link, constant_force, sine_force>;
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using newton_reuse_model = pradis::model<point_mass, linear_spring, linear_damper, initial_displacement, planar_inertia,
+    planar_link, constant_force, sine_force>;
 
-void build_linear(linear_model& m) {
+void build_linear(newton_reuse_model& m) {
   const auto d = m.add_dofs(2, "x");
   m.add<point_mass>("m1", {1.0}, d[0]);
   m.add<point_mass>("m2", {0.5}, d[1]);
@@ -37,7 +39,7 @@ void build_linear(linear_model& m) {
 }
 /// Two planar bodies joined by a stiff link (LINKD), pulled and shaken: a
 /// nonlinear model (the link's direction turns).
-void build_two_bodies(two_body_model& m) {
+void build_two_bodies(newton_reuse_model& m) {
   const auto d = m.add_dofs(6, "DOF ");
   m.add<planar_inertia>("Body 1", {.m = 1.0, .j = 0.1}, d[0], d[1], d[2]);
   m.add<planar_inertia>("Body 2", {.m = 2.0, .j = 0.1}, d[3], d[4], d[5]);
@@ -54,7 +56,7 @@ run_options options(double end, newton_method method, double h = 1e-3) {
 
 TEST_SUITE("integrators/modified Newton") {
   TEST_CASE("on a linear model at a constant step one factorisation serves the whole stage") {
-    linear_model a, b;
+    newton_reuse_model a, b;
     build_linear(a);
     build_linear(b);
     simulation sa(a, newmark{}), sb(b, newmark{});
@@ -84,7 +86,7 @@ TEST_SUITE("integrators/modified Newton") {
   }
 
   TEST_CASE("on a nonlinear model modified Newton agrees with full Newton and factorises far less") {
-    two_body_model a, b;
+    newton_reuse_model a, b;
     build_two_bodies(a);
     build_two_bodies(b);
     simulation sa(a, generalized_alpha(0.8)), sb(b, generalized_alpha(0.8));
@@ -107,7 +109,7 @@ TEST_SUITE("integrators/modified Newton") {
     // kept). The correction test needs a second, vanishing correction; with
     // ITR = 2 the stale Jacobian's second correction is not small enough on this
     // linear model, the fresh one's is (its first correction solves it exactly).
-    linear_model a, b;
+    newton_reuse_model a, b;
     build_linear(a);
     build_linear(b);
     simulation sa(a, newmark{}), sb(b, newmark{});
@@ -126,7 +128,7 @@ TEST_SUITE("integrators/modified Newton") {
   TEST_CASE("a change of the step beyond the coefficient ratio refreshes the Jacobian") {
     // Error control changes the step often; each change beyond [0.6, 1/0.6]
     // of ca costs a factorisation, smaller ones none.
-    linear_model a;
+    newton_reuse_model a;
     build_linear(a);
     simulation sa(a, newmark{});
     run_options o = options(0.5, newton_method::modified, 0.05);
@@ -136,7 +138,7 @@ TEST_SUITE("integrators/modified Newton") {
     CHECK(st.factorizations > 2);
     CHECK(st.factorizations < st.steps + st.rejected_steps);
     // coefficient_change = 0: every change of the step refreshes (full Newton's count of refreshes per step at most).
-    linear_model b;
+    newton_reuse_model b;
     build_linear(b);
     simulation sb(b, newmark{});
     o.newton.coefficient_change = 0;
@@ -145,7 +147,7 @@ TEST_SUITE("integrators/modified Newton") {
   }
 
   TEST_CASE("bad modified-Newton options are refused") {
-    linear_model a;
+    newton_reuse_model a;
     build_linear(a);
     simulation sa(a, newmark{});
     run_options o = options(0.1, newton_method::modified);

@@ -19,21 +19,6 @@ using namespace pradis;
 using namespace pradis::elements;
 
 namespace {
-using osc_model = model<point_mass, linear_spring, initial_displacement>;
-
-// m = 1, k = (2 pi)^2 (period 1), X0 = 1: relative energy change after `periods`.
-double energy_change(const alpha_family& scheme, double drltx, double periods) {
-  osc_model m;
-  const dof x = m.add_dof("x");
-  const double k = 4 * std::numbers::pi * std::numbers::pi;
-  m.add<point_mass>("mass", {1.0}, x);
-  m.add<linear_spring>("spring", {k}, x, m.ground());
-  m.add<initial_displacement>("x0", {1.0}, x);
-  simulation<osc_model, alpha_family> sim(m, scheme);
-  sim.run({.end = periods, .smax = 0.1, .error_control = true, .drltx = drltx});
-  const double e = 0.5 * sim.v(x) * sim.v(x) + 0.5 * k * sim.u(x) * sim.u(x);
-  return e / (0.5 * k) - 1;
-}
 
 /// A one-sided wall at u = 0 with stiffness k that asks for steps of h_c while in
 /// contact (STEPMD) and nothing outside: after the contact the step jumps back to
@@ -60,6 +45,26 @@ struct stepping_wall {
     if (out.want_jacobian) out.K(0, 0) = touching ? p.k : 0.0;
   }
 };
+
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using variable_step_alpha_model = pradis::model<point_mass, linear_spring, initial_displacement, initial_velocity,
+    stepping_wall>;
+
+// m = 1, k = (2 pi)^2 (period 1), X0 = 1: relative energy change after `periods`.
+double energy_change(const alpha_family& scheme, double drltx, double periods) {
+  variable_step_alpha_model m;
+  const dof x = m.add_dof("x");
+  const double k = 4 * std::numbers::pi * std::numbers::pi;
+  m.add<point_mass>("mass", {1.0}, x);
+  m.add<linear_spring>("spring", {k}, x, m.ground());
+  m.add<initial_displacement>("x0", {1.0}, x);
+  simulation<variable_step_alpha_model, alpha_family> sim(m, scheme);
+  sim.run({.end = periods, .smax = 0.1, .error_control = true, .drltx = drltx});
+  const double e = 0.5 * sim.v(x) * sim.v(x) + 0.5 * k * sim.u(x) * sim.u(x);
+  return e / (0.5 * k) - 1;
+}
+
 static_assert(check_element<stepping_wall>());
 }  // namespace
 
@@ -100,7 +105,7 @@ TEST_SUITE("integrators/variable-step alpha") {
     for (const alpha_family& s : {alpha_family(hht{-0.05}), alpha_family(hht{-0.3}),
                                   alpha_family(generalized_alpha{0.8})}) {
       CAPTURE(s.label());
-      model<point_mass, initial_displacement, initial_velocity, stepping_wall> m;
+      variable_step_alpha_model m;
       const dof x = m.add_dof("x");
       m.add<point_mass>("mass", {1.0}, x);
       m.add<initial_displacement>("x0", {1e-3}, x);

@@ -83,12 +83,16 @@ void zsr_run(M& md, bool bdf, const run_options& o, F&& observe) {
 }
 }  // namespace
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using zero_step_rates_model = pradis::model<point_mass, linear_spring, linear_damper, initial_displacement, zsr_no_root,
+    zsr_fragile, constant_force, resistor, current_sine, current_table>;
 TEST_SUITE("integrators/zero step") {
   TEST_CASE("a massless point between a spring and a damper starts with s' = k x0 / c and s'' = -k^2 x0 / c^2") {
     const double k = 40, c = 2, m = 3, x0 = 0.05;
     for (const bool bdf : {false, true}) {
       CAPTURE(bdf);
-      model<point_mass, linear_spring, linear_damper, initial_displacement> md;
+      zero_step_rates_model md;
       const dof x = md.add_dof("x"), s = md.add_dof("s");
       md.add<point_mass>("mass", {m}, x);
       md.add<linear_spring>("spring", {k}, x, s);
@@ -107,7 +111,7 @@ TEST_SUITE("integrators/zero step") {
   }
 
   TEST_CASE("a viscous DOF whose flow has no root: the zero step warns and the first step fails in Newton") {
-    model<zsr_no_root> md;
+    zero_step_rates_model md;
     const dof v = md.add_dof("v");
     md.add<zsr_no_root>("noroot", {}, v);
     simulation sim(md);
@@ -131,7 +135,7 @@ TEST_SUITE("integrators/zero step") {
   TEST_CASE("an element that refuses the states next to the start: rates at 0 with a warning, the run goes on") {
     // The damper balances the applied force -1 N: 2 v = -1, v = -0.5 from the first solve; the
     // difference quotients along the motion displace the DOF.
-    model<zsr_fragile, constant_force> md;
+    zero_step_rates_model md;
     const dof v = md.add_dof("v");
     md.add<zsr_fragile>("fragile", {}, v);
     md.add<constant_force>("push", {-1.0}, v);
@@ -165,7 +169,7 @@ TEST_SUITE("integrators/zero step") {
       for (const bool table : {false, true}) {
         CAPTURE(bdf);
         CAPTURE(table);
-        model<resistor, current_sine, current_table> md;
+        zero_step_rates_model md;
         const dof n = md.add_dof("n");
         md.add<resistor>("R", {R}, n, md.ground());
         if (table)

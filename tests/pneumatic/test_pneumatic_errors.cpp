@@ -39,9 +39,13 @@ std::optional<pradis::error> pp_evaluate(const E& e, const local_input<E>& in) {
   return error_from([&] { e.evaluate(in, out, ctx); });
 }
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using pneumatic_errors_model = pradis::model<pneumatic_cylinder, displacement_source, gas_chamber,
+    pneumatic_flow_source>;
 // Runs a PNCYL "cyl" with its rod driven by XSRC x = amp sin(2 pi t) and returns the error.
 std::optional<pradis::error> pp_driven_cylinder_error(double amp) {
-  model<pneumatic_cylinder, displacement_source> md;
+  pneumatic_errors_model md;
   const dof ca = md.add_dof("A"), cb = md.add_dof("B"), x = md.add_dof("rod");
   md.add<pneumatic_cylinder>("cyl", pp_cylinder, ca, cb, x);
   md.add<displacement_source>("drive", {amp, 1.0, 0.0, 0.0}, x);
@@ -79,7 +83,7 @@ TEST_SUITE("pneumatic/pneumatic errors") {
   TEST_CASE("PNVOL drained by a constant mass flow: the absolute pressure reaches zero (code 75)") {
     // Isothermal: P = P_atm + R T q t / V with q = -1e-3 kg/s, V = 2e-3 m^3: P = 0 at t = 2.41 s.
     const double vol = 2e-3, q = -1e-3, t = 293.15;
-    model<gas_chamber, pneumatic_flow_source> md;
+    pneumatic_errors_model md;
     const dof node = md.add_dof("tank");
     md.add<gas_chamber>("tank", {vol, 1.0, 0.0, t}, node);
     md.add<pneumatic_flow_source>("drain", {q}, node, md.ground());

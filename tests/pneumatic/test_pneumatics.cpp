@@ -32,11 +32,15 @@ double iso6358(double c, double b, double t1, double p1, double p2) {
   return r <= b ? choked : choked * std::sqrt(1 - std::pow((r - b) / (1 - b), 2));
 }
 
+/// The one model type of this file's tests (every element type they use), so that the drivers are
+/// compiled once for them all.
+using pneumatics_model = pradis::model<gas_piston_chamber, displacement_source, gas_chamber, pneumatic_flow_source,
+    pneumatic_cylinder, pneumatic_pressure_source, pneumatic_orifice>;
 // Largest relative deviation of the chamber pressure from p0 (V0/V)^n along a run with the piston
 // driven by XSRC x(t) = -X sin(2 pi t) over a quarter period (the volume V0 + A x halves for X A = V0/2).
 double compression_error(double n, double h) {
   const double area = 1e-3, v0 = 1e-4, amp = 0.05, p0 = 2e5, big_p0 = pn::atmosphere + p0;
-  model<gas_piston_chamber, displacement_source> md;
+  pneumatics_model md;
   const dof gas = md.add_dof("gas"), x = md.add_dof("x");
   const auto ch = md.add<gas_piston_chamber>("chamber", {area, v0, n, p0, 293.15}, gas, x);
   md.add<displacement_source>("drive", {-amp, 1.0, 0.0, 0.0}, x);
@@ -58,7 +62,7 @@ TEST_SUITE("pneumatic/chambers") {
     // m' = q and P V = m R T with T fixed: P(t) = P0 + R T q t / V. The chamber is linear in v for
     // n = 1 and the forcing is constant, so the trapezoidal rule is exact.
     const double vol = 2e-3, q = 1e-3, t = 293.15, p0 = 5e4, big_p0 = pn::atmosphere + p0;
-    model<gas_chamber, pneumatic_flow_source> md;
+    pneumatics_model md;
     const dof node = md.add_dof("tank");
     const auto ch = md.add<gas_chamber>("tank", {vol, 1.0, p0, t}, node);
     md.add<pneumatic_flow_source>("fill", {q}, node, md.ground());
@@ -97,7 +101,7 @@ TEST_SUITE("pneumatic/chambers") {
     // PA VA = P0 VA0, PB VB = P0 VB0. The drive supplies the rod force: its reaction W(1) is the
     // sum of the other flows on the rod, -(A1 vA - A2 vB).
     const double a1 = 2e-3, a2 = 1.5e-3, va0 = 2e-4, vb0 = 1.5e-4, p0 = 3e5, big_p0 = pn::atmosphere + p0;
-    model<pneumatic_cylinder, displacement_source> md;
+    pneumatics_model md;
     const dof ca = md.add_dof("A"), cb = md.add_dof("B"), x = md.add_dof("rod");
     const auto cyl = md.add<pneumatic_cylinder>("cyl", {a1, a2, va0, vb0, 1.0, p0, 293.15}, ca, cb, x);
     const auto drive = md.add<displacement_source>("drive", {0.04, 1.0, 0.0, 0.0}, x);
@@ -123,7 +127,7 @@ TEST_SUITE("pneumatic/PNORF") {
     const double c = 2e-8, b = 0.3, t1 = 300.0;
     for (const double supply : {6e5, 2e5, 2e4}) {
       CAPTURE(supply);
-      model<pneumatic_pressure_source, pneumatic_orifice, gas_chamber> md;
+      pneumatics_model md;
       const dof up = md.add_dof("supply"), tank = md.add_dof("tank");
       const auto src = md.add<pneumatic_pressure_source>("P", {supply}, up);
       const auto orf = md.add<pneumatic_orifice>("valve", {c, b, t1, 0.999}, up, md.ground());
@@ -239,7 +243,7 @@ TEST_SUITE("pneumatic/bad input") {
   }
 
   TEST_CASE("a chamber whose volume vanishes under a driven piston is a singular situation (code 75)") {
-    model<gas_piston_chamber, displacement_source> md;
+    pneumatics_model md;
     const dof gas = md.add_dof("gas"), x = md.add_dof("x");
     md.add<gas_piston_chamber>("ch", {1e-3, 1e-4, 1.0, 0.0, 293.15}, gas, x);
     md.add<displacement_source>("drive", {-0.2, 1.0, 0.0, 0.0}, x);  // x reaches -0.1 m (V = 0) at t = 1/12
@@ -251,7 +255,7 @@ TEST_SUITE("pneumatic/bad input") {
   }
 
   TEST_CASE("two chambers with different initial pressures on one node are refused with code 90") {
-    model<gas_chamber> md;
+    pneumatics_model md;
     const dof n = md.add_dof("n");
     md.add<gas_chamber>("a", {1e-3, 1.0, 1e5, 293.15}, n);
     md.add<gas_chamber>("b", {1e-3, 1.0, 2e5, 293.15}, n);
