@@ -86,21 +86,23 @@ error thrown_by(F&& f) {
   return error(error_code::invalid_model, "unreachable");
 }
 
-/// Runs the stage o on a.m with the BDF driver or NEWMARK, the log into `log`; returns
-/// the pradis::error it must throw, and in t_end the time the driver reached.
-error run_watched(watched_oscillator& a, const run_options& o, bool bdf, std::ostringstream& log, double& t_end) {
+/// Runs the stage o on a.m with the BDF driver or NEWMARK; checks that it ends with code 142
+/// (its step budget) and returns its log, in t_end the time the driver reached.
+std::string budget_log(watched_oscillator& a, const run_options& o, bool bdf, double& t_end) {
+  std::ostringstream log;
+  const auto run = [&](auto& s) {
+    s.log().to(log);
+    CHECK(thrown_by([&] { s.run(o); }).code() == error_code::step_budget);
+    t_end = s.time();
+  };
   if (bdf) {
     bdf_simulation s(a.m);
-    s.log().to(log);
-    const error e = thrown_by([&] { s.run(o); });
-    t_end = s.time();
-    return e;
+    run(s);
+  } else {
+    simulation s(a.m, newmark{});
+    run(s);
   }
-  simulation s(a.m, newmark{});
-  s.log().to(log);
-  const error e = thrown_by([&] { s.run(o); });
-  t_end = s.time();
-  return e;
+  return log.str();
 }
 
 }  // namespace
@@ -178,13 +180,10 @@ TEST_SUITE("integrators/step_watch") {
     for (const bool bdf : {false, true}) {
       CAPTURE(bdf);
       watched_oscillator a(true);
-      std::ostringstream log;
       run_options o = budget_stage(1.0, 25000);
       o.drltx = 1e-6;
       double t_end = 0;
-      const error e = run_watched(a, o, bdf, log, t_end);
-      CHECK(e.code() == error_code::step_budget);
-      const std::string text = log.str();
+      const std::string text = budget_log(a, o, bdf, t_end);
       INFO(text);
       const auto first = text.find("warning: the run crawls: the last 10000 accepted steps were on average below "
                                    "0.001 of the stage's largest step");
@@ -212,15 +211,12 @@ TEST_SUITE("integrators/step_watch") {
     for (const bool bdf : {false, true}) {
       CAPTURE(bdf);
       watched_oscillator a(true, 0.0, 1e-13);
-      std::ostringstream log;
       run_options o = budget_stage(1.0, 12000);
       o.smin = 1e-9;
       o.drltx = 1e-6;
       double t_end = 0;
-      const error e = run_watched(a, o, bdf, log, t_end);
-      CHECK(e.code() == error_code::step_budget);
+      const std::string text = budget_log(a, o, bdf, t_end);
       CHECK(t_end == doctest::Approx(12000 * 1e-9).epsilon(1e-6));
-      const std::string text = log.str();
       INFO(text);
       const auto first = text.find("warning: the run crawls: the last 10000 accepted steps were held at SMIN = "
                                    "1e-09 (on average below twice it; SMAX = 0.01) (now h = 1e-09 at t = ");
@@ -245,6 +241,74 @@ TEST_SUITE("integrators/step_watch") {
     s.run(o);
     CHECK(s.statistics().steps >= 12000);
     CHECK(log.str().find("crawls") == std::string::npos);
+  }
+
+  TEST_CASE("a stage that needs more steps of SMAX than its NSTEPMAX is warned of at its start, in both drivers") {
+    // END = 1, SMAX = 0.01: at least 100 steps. NSTEPMAX = 30 cannot reach END; the warning
+    // comes before the first step, and the stage then ends with code 142 as it says.
+    for (const bool bdf : {false, true}) {
+      CAPTURE(bdf);
+      watched_oscillator a;
+      run_options o = budget_stage(1.0, 30);
+      o.drltx = 1e-6;
+      double t_end = 0;
+      const std::string text = budget_log(a, o, bdf, t_end);
+      INFO(text);
+      const auto warned = text.find("warning: the stage needs at least 100 steps to END = 1 (from t = 0 in steps of at "
+                                    "most SMAX = 0.01), more than its NSTEPMAX = 30: it will end with code 142 "
+                                    "before END");
+      CHECK(warned != std::string::npos);
+      CHECK(warned < text.find("NSTEPMAX = 30 accepted steps"));  // before the error
+    }
+    // NSTEPMAX = 100, exactly the steps of SMAX the stage needs: no warning, and it ends normally.
+    watched_oscillator b;
+    std::ostringstream log;
+    simulation s(b.m, newmark{});
+    s.log().to(log);
+    s.run(budget_stage(1.0, 100));
+    CHECK(s.time() == 1.0);
+    CHECK(log.str().find("needs at least") == std::string::npos);
+  }
+
+  TEST_CASE("a stage of more than 1e8 steps of SMAX gets a note at its start") {
+    // The note of stage_start_text (step_watch.hpp), from the step count (END - t) / SMAX alone.
+    using pradis::detail::stage_start_text;
+    CHECK(stage_start_text(0.0, 0.1, 1e-9, 0) == "");  // 1e8 steps: not above the bound
+    CHECK(stage_start_text(0.0, 1.0, 1e-9, 0) ==
+          "note: the stage needs at least 1000000000 steps to END = 1 (from t = 0 in steps of at most SMAX = 1e-09); a "
+          "larger SMAX or a nearer END shortens it, NSTEPMAX (run_options::max_steps) ends a stage after that many "
+          "steps");
+    // With a budget below the count, the warning instead; with a budget above it, the note.
+    CHECK(stage_start_text(0.5, 1.0, 1e-9, 1000).find("warning: the stage needs at least 500000000 steps") == 0);
+    CHECK(stage_start_text(0.5, 1.0, 1e-9, 1000000000).find("note: the stage needs at least 500000000 steps") == 0);
+    // Through both drivers: an observer stops the run after its first step; the note was written before it.
+    for (const bool bdf : {false, true}) {
+      CAPTURE(bdf);
+      watched_oscillator a;
+      std::ostringstream log;
+      const run_options o = budget_stage(2e6, 0);  // 2e8 steps of SMAX = 0.01
+      struct stop_run {};
+      const auto stop = [](const auto&) { throw stop_run{}; };
+      bool stopped = false;
+      try {
+        if (bdf) {
+          bdf_simulation s(a.m);
+          s.log().to(log);
+          s.on_step(stop);
+          s.run(o);
+        } else {
+          simulation s(a.m, newmark{});
+          s.log().to(log);
+          s.on_step(stop);
+          s.run(o);
+        }
+      } catch (const stop_run&) {
+        stopped = true;
+      }
+      CHECK(stopped);
+      CHECK(log.str().find("note: the stage needs at least 200000000 steps to END = 2000000 (from t = 0 in steps of at "
+                           "most SMAX = 0.01); a larger SMAX") != std::string::npos);
+    }
   }
 
   TEST_CASE("no crawl warning where the steps stay within 1e-3 of the stage's largest") {

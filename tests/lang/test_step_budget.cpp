@@ -86,6 +86,16 @@ TEST_SUITE("lang/step_budget") {
     CHECK(e.find("NSTEPMAX = 12 accepted steps at t = 0.012, before END = 0.1") != std::string::npos);
     e = lang_test::error_of(with_stage("Calc 'SHTERM (END=0.1, SMAX=1E-3, SAVE=0.005, NSTEPMAX=10)"));
     CHECK(e.find("NSTEPMAX = 10 accepted steps at t = 0.01, before END = 0.1") != std::string::npos);
+    // The warning that the stage needs more steps than its NSTEPMAX comes once, for the stage, not per piece.
+    std::ostringstream log;
+    auto p = lang_test::build(with_stage("Calc 'SHTERM (END=0.1, SMAX=1E-3, SAVE=0.005, NSTEPMAX=12)"));
+    CHECK_THROWS_AS(p->run({.write_files = false, .log = &log}), lang::lang_error);
+    const std::string l = log.str();
+    CAPTURE(l);
+    const auto w = l.find("warning: the stage needs at least 100 steps to END = 0.1 (from t = 0 in steps of at most "
+                          "SMAX = 0.001), more than its NSTEPMAX = 12");
+    CHECK(w != std::string::npos);
+    CHECK(l.find("needs at least", l.find("needs at least") + 1) == std::string::npos);  // once
     // A budget the stage does not use up changes nothing.
     auto a = lang_test::run(with_stage("Calc 'SHTERM (END=0.1, SMAX=1E-3, SAVE=0.005, NSTEPMAX=100)"));
     auto b = lang_test::run(with_stage("Calc 'SHTERM (END=0.1, SMAX=1E-3, SAVE=0.005)"));
@@ -134,6 +144,10 @@ TEST_SUITE("lang/step_budget") {
     auto f = lang_test::build(with_stage("Calc 'SHTERM (END=0.1, SMAX=1E-3, NSTEPMAX=20)"));
     CHECK_THROWS_AS(f->run({.write_files = false, .log = &log2}), lang::lang_error);
     CHECK(log2.str().find("pradis error") == std::string::npos);
+    // The stage needs at least 100 steps of SMAX and its NSTEPMAX is 20: the warning at its start says so.
+    CHECK(log2.str().find("warning: the stage needs at least 100 steps to END = 0.1 (from t = 0 in steps of at most "
+                          "SMAX = 0.001), more than its NSTEPMAX = 20: it will end with code 142 before END") !=
+          std::string::npos);
   }
 
   TEST_CASE("a run that crawls: the warning names it, NSTEPMAX ends it (two_bodies.prd with body 2 on DOFs 1 5 6)") {

@@ -282,6 +282,15 @@ class driver_core {
                    m_.old_state_pool().size(), m_.new_state_pool().size());
     return c;
   }
+  /// Starts the step watch of the stage opt_ (step_watch.hpp) at the current time, and writes its
+  /// note on a long stage or its warning on a step budget too small for END (unless
+  /// run_options::start_notes is false).
+  void start_watch() {
+    watch_.start_stage(opt_.smin, opt_.smax);
+    if (!opt_.start_notes) return;
+    const std::string text = stage_start_text(t_, opt_.end, opt_.smax, opt_.max_steps);
+    if (!text.empty()) log_.write(text);
+  }
   /// After an accepted step of size h and its outputs: the crawl warning, once per stage,
   /// and the step budget (step_watch.hpp). Throws step_budget when the stage used up
   /// NSTEPMAX accepted steps before END.

@@ -77,6 +77,12 @@ struct run_options {
   /// before END ends with error code 142 (step_budget), its results up to there kept: a
   /// bound on a run that crawls (step_watch.hpp).
   long max_steps = 0;
+  /// At the stage's start, the warning when it needs more steps of SMAX to END than
+  /// max_steps allows and the note when it needs more than 1e8 (detail::stage_start_text,
+  /// step_watch.hpp).
+  /// false: not written; a caller that runs one stage as several calls (the language's
+  /// SAVE pieces) writes them once for the whole stage.
+  bool start_notes = true;
 };
 
 /// What one attempted step ended in.

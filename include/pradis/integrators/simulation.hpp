@@ -61,7 +61,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
       core::prescribed_, core::recommended_, core::rhs_, core::s0_, core::s_, core::started_, core::stats_, core::t_,
       core::last_failure_, core::watch_;
   using core::bad_dof, core::checked, core::commit, core::context_for, core::evaluate, core::for_each_instance,
-      core::new_integration, core::raise, core::watch_accepted;
+      core::new_integration, core::raise, core::start_watch, core::watch_accepted;
 
  public:
   /// The model type the simulation runs.
@@ -90,7 +90,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     if (!(opt.end > t_)) fail_option("END = " + num(opt.end) + " must be after the current time " + num(t_));
     newton_.invalidate();  // every stage starts with a fresh Jacobian
     precision_warned_ = false;
-    watch_.start_stage(opt.smin, opt.smax);
+    start_watch();
     if (!started_) {
       zero_step();
     } else {

@@ -32,6 +32,9 @@ inline constexpr long crawl_steps = 10000;
 /// See crawl_steps. A window also crawls when its mean step is below twice SMIN while
 /// SMIN <= crawl_drop SMAX: the step is held at SMIN, whatever the stage's largest.
 inline constexpr double crawl_drop = 1e-3;
+/// A stage whose END lies more than this many steps of SMAX ahead gets a note at its start:
+/// it is long whatever its steps, and no crawl (which compares steps) will be reported.
+inline constexpr double long_stage_steps = 1e8;
 
 namespace detail {
 
@@ -42,6 +45,23 @@ inline error step_budget_error(long max_steps, double t, double end, const std::
                                             " accepted steps at t = " + num(t) + ", before END = " + num(end) +
                                             (steps.empty() ? std::string() : " (" + steps + ")") +
                                             "; the results up to t stand");
+}
+
+/// At the start of a stage from t to `end` with SMAX = h_max and NSTEPMAX = max_steps (0:
+/// none): the warning when the stage needs more steps of SMAX than max_steps allows, else the
+/// note when it needs more than long_stage_steps; empty otherwise.
+inline std::string stage_start_text(double t, double end, double h_max, long max_steps) {
+  if (!(h_max > 0)) return {};
+  const double fewest = std::ceil((end - t) / h_max * (1 - 1e-12));
+  const std::string need = "needs at least " + num(fewest) + " steps to END = " + num(end) + " (from t = " + num(t) +
+                           " in steps of at most SMAX = " + num(h_max) + ")";
+  if (max_steps > 0 && fewest > static_cast<double>(max_steps))
+    return "warning: the stage " + need + ", more than its NSTEPMAX = " + std::to_string(max_steps) +
+           ": it will end with code 142 before END";
+  if (fewest > long_stage_steps)
+    return "note: the stage " + need + "; a larger SMAX or a nearer END shortens it, NSTEPMAX " +
+           "(run_options::max_steps) ends a stage after that many steps";
+  return {};
 }
 
 /// The accepted steps of one stage: its largest step, its windows of crawl_steps steps

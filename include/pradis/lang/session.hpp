@@ -312,11 +312,15 @@ class session : public action_checker, public stage_drivers<session> {
     if (progress_) progress_->begin((c.label.empty() ? "" : c.label + " ") + c.program, t0, st.opt.end);
     try {
       if (st.save > 0) {
+        // The stage's start note or warning once, not per piece (run_options::start_notes).
+        const std::string start = pradis::detail::stage_start_text(t0, st.opt.end, st.opt.smax, st.opt.max_steps);
+        if (!start.empty()) note(start);
         for (;;) {
           const double next = next_save_time(started_ ? time_now() : t0, st.save);
           const double tol = 1e-9 * st.save;
           const bool last = !(next < st.opt.end - tol);
           run_options o = st.opt;
+          o.start_notes = false;
           if (!last) o.end = next;
           run_piece(o, st.opt.end, st.opt.max_steps, before.steps);
           started_ = true;

@@ -69,7 +69,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   using core::asm_, core::index3_, core::log_, core::m_, core::opt_, core::prescribed_, core::recommended_, core::rhs_, core::s0_,
       core::s_, core::started_, core::stats_, core::t_, core::last_failure_, core::watch_;
   using core::bad_dof, core::checked, core::commit, core::context_for, core::evaluate, core::for_each_instance,
-      core::new_integration, core::raise, core::watch_accepted;
+      core::new_integration, core::raise, core::start_watch, core::watch_accepted;
 
  public:
   /// The model type the driver runs.
@@ -119,7 +119,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       recommended_ = asm_.recommended_step();
     }
     start_history();
-    watch_.start_stage(opt.smin, opt.smax);
+    start_watch();
     const double t_start = t_;
     long out_index = 1;
     double next_out = opt.out > 0 ? t_start + opt.out : opt.end;
