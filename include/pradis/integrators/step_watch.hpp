@@ -53,15 +53,15 @@ inline error step_budget_error(long max_steps, double t, double end, const std::
 inline std::string stage_start_text(double t, double end, double h_max, long max_steps) {
   if (!(h_max > 0)) return {};
   const double fewest = std::ceil((end - t) / h_max * (1 - 1e-12));
+  const bool over_budget = max_steps > 0 && fewest > static_cast<double>(max_steps);
+  if (!over_budget && !(fewest > long_stage_steps)) return {};  // the usual stage: no text, no allocation
   const std::string need = "needs at least " + num(fewest) + " steps to END = " + num(end) + " (from t = " + num(t) +
                            " in steps of at most SMAX = " + num(h_max) + ")";
-  if (max_steps > 0 && fewest > static_cast<double>(max_steps))
+  if (over_budget)
     return "warning: the stage " + need + ", more than its NSTEPMAX = " + std::to_string(max_steps) +
            ": it will end with code 142 before END";
-  if (fewest > long_stage_steps)
-    return "note: the stage " + need + "; a larger SMAX or a nearer END shortens it, NSTEPMAX " +
-           "(run_options::max_steps) ends a stage after that many steps";
-  return {};
+  return "note: the stage " + need + "; a larger SMAX or a nearer END shortens it, NSTEPMAX " +
+         "(run_options::max_steps) ends a stage after that many steps";
 }
 
 /// The accepted steps of one stage: its largest step, its windows of crawl_steps steps
