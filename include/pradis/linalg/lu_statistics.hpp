@@ -91,6 +91,17 @@ struct lu_statistics {
   /// seconds; measured only with sparse_lu::time_solves (0 otherwise).
   double last_solve_seconds = 0;
 
+  /// Sets the figures of a symbolic factor: nnz_factor, fill, mean_right_of_diagonal, flops,
+  /// solve_flops and delayed_rows (n and nnz_sym must be set).
+  void set_structure(long factor_entries, double factor_flops, int delayed) noexcept {
+    nnz_factor = factor_entries;
+    fill = factor_entries - nnz_sym;
+    mean_right_of_diagonal = n > 0 ? static_cast<double>(factor_entries - n) / 2.0 / n : 0.0;
+    flops = factor_flops;
+    solve_flops = static_cast<double>(factor_entries - n);
+    delayed_rows = delayed;
+  }
+
   /// True when the condition estimate of the last factorisation is at or above
   /// condition_warning_level: fewer than about -log10(eps * condition_estimate) digits of a
   /// solution can be trusted. False when no estimate was made.
@@ -162,5 +173,14 @@ struct lu_statistics {
     }
   }
 };
+
+namespace detail {
+/// A number in messages of the sparse LU: %.6g.
+inline std::string format_g6(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+}  // namespace detail
 
 }  // namespace pradis::linalg

@@ -13,7 +13,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <limits>
 #include <span>
 #include <stdexcept>
@@ -373,14 +372,8 @@ class sparse_lu {
   }
 
   void set_structure_statistics() {
-    const int n = stats_.n;
-    const long nnz_factor = lu_.f_ptr.back();
-    stats_.nnz_factor = nnz_factor;
-    stats_.fill = nnz_factor - stats_.nnz_sym;
-    stats_.mean_right_of_diagonal = n > 0 ? static_cast<double>(nnz_factor - n) / 2.0 / n : 0.0;
-    stats_.flops = lu_.flops;
-    stats_.solve_flops = static_cast<double>(nnz_factor - n);
-    stats_.delayed_rows = static_cast<int>(std::count(delayed_.begin(), delayed_.end(), 1));
+    const auto delayed = static_cast<int>(std::count(delayed_.begin(), delayed_.end(), 1));
+    stats_.set_structure(lu_.f_ptr.back(), lu_.flops, delayed);
   }
 
   /// Marks rows whose equilibrated diagonal is zero or below threshold * row scale as delayed;
@@ -475,11 +468,7 @@ class sparse_lu {
   [[noreturn]] static void throw_singular(int row, std::string msg) {
     throw error(error_code::singular_matrix, std::move(msg), {}, {}, row);
   }
-  static std::string fmt(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", v);
-    return buf;
-  }
+  static std::string fmt(double v) { return detail::format_g6(v); }
 
   Ordering ordering_{};
   sparsity_pattern pattern_;          // the analysed A
