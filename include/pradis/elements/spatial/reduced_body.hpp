@@ -84,6 +84,47 @@ constexpr auto reduced_body_parameter_text() {
       }
   return t;
 }
+
+/// NEWINT of FLEX3 for any size (compiled once, not per element type: the checks
+/// run on dynamic copies of K and M, so no fixed-size decomposition is instantiated
+/// for every NB and NM). x0 holds X, Y, Z of each boundary node; K and M have
+/// 6 per node, then the modes. Code 100 through ctx if a parameter is not finite,
+/// M is not positive definite, K is not positive semidefinite or K resists a rigid
+/// motion of the reference positions.
+inline void check_reduced_part(std::span<const double> x0, const Eigen::Ref<const Eigen::MatrixXd>& k_in,
+                               const Eigen::Ref<const Eigen::MatrixXd>& m_in, element_context& ctx) {
+  for (double x : x0)
+    if (!std::isfinite(x)) ctx.invalid_parameter("the node positions must be finite");
+  if (!k_in.allFinite() || !m_in.allFinite()) ctx.invalid_parameter("K and M must be finite");
+  const Eigen::MatrixXd k = k_in, m = m_in;
+  if (Eigen::LLT<Eigen::MatrixXd>(m).info() != Eigen::Success)
+    ctx.invalid_parameter("the reduced mass M is not positive definite");
+  const double sk = std::max(k.cwiseAbs().maxCoeff(), 1e-300);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(k, Eigen::EigenvaluesOnly);
+  if (es.eigenvalues()(0) < -1e-9 * sk)
+    ctx.invalid_parameter("the reduced stiffness K is not positive semidefinite (smallest eigenvalue " +
+                          to_text(es.eigenvalues()(0)) + ")");
+  // The six rigid motions of the reference positions: translations and small rotations about node 1.
+  const auto nb = static_cast<Eigen::Index>(x0.size() / 3);
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(k.rows(), 6);
+  const spatial::vec3 x1(x0[0], x0[1], x0[2]);
+  double size = 0;
+  for (Eigen::Index i = 0; i < nb; ++i) {
+    const auto at = static_cast<std::size_t>(3 * i);
+    const spatial::vec3 r = spatial::vec3(x0[at], x0[at + 1], x0[at + 2]) - x1;
+    size = std::max(size, r.norm());
+    g.block<3, 3>(6 * i, 0) = spatial::mat3::Identity();
+    g.block<3, 3>(6 * i, 3) = -spatial::skew(r);
+    g.block<3, 3>(6 * i + 3, 3) = spatial::mat3::Identity();
+  }
+  if (!(size > 0)) ctx.invalid_parameter("all boundary nodes are at one point");
+  const Eigen::MatrixXd kg = k * g;
+  for (Eigen::Index c = 0; c < 6; ++c)
+    if (kg.col(c).norm() > 1e-8 * sk * g.col(c).norm())
+      ctx.invalid_parameter(std::string("K resists a rigid ") + (c < 3 ? "translation along " : "rotation about ") +
+                            "XYZ"[c % 3] + " of the reference node positions: the part must be free (no grounded "
+                            "DOF) and the positions and coordinate order those of the reduction");
+}
 }  // namespace detail
 
 /// FLEX3: a linear elastic part reduced to NB >= 2 boundary nodes (6 coordinates
@@ -199,35 +240,7 @@ struct reduced_body {
   /// NEWINT: finite parameters, M positive definite, K positive semidefinite and
   /// free of the rigid-body motions of the reference node positions (code 100).
   void new_integration(element_context& ctx) const {
-    for (double x : p.x0)
-      if (!std::isfinite(x)) ctx.invalid_parameter("the node positions must be finite");
-    if (!p.k.allFinite() || !p.m.allFinite()) ctx.invalid_parameter("K and M must be finite");
-    if (Eigen::LLT<matrix>(p.m).info() != Eigen::Success)
-      ctx.invalid_parameter("the reduced mass M is not positive definite");
-    const double sk = std::max(p.k.cwiseAbs().maxCoeff(), 1e-300);
-    const Eigen::SelfAdjointEigenSolver<matrix> es(p.k, Eigen::EigenvaluesOnly);
-    if (es.eigenvalues()(0) < -1e-9 * sk)
-      ctx.invalid_parameter("the reduced stiffness K is not positive semidefinite (smallest eigenvalue " +
-                            to_text(es.eigenvalues()(0)) + ")");
-    // The six rigid motions of the reference positions: translations and small rotations about node 1.
-    Eigen::Matrix<double, nr, 6> g = Eigen::Matrix<double, nr, 6>::Zero();
-    const spatial::vec3 x1(p.x0[0], p.x0[1], p.x0[2]);
-    double size = 0;
-    for (int i = 0; i < NB; ++i) {
-      const auto k = static_cast<std::size_t>(3 * i);
-      const spatial::vec3 r = spatial::vec3(p.x0[k], p.x0[k + 1], p.x0[k + 2]) - x1;
-      size = std::max(size, r.norm());
-      g.template block<3, 3>(6 * i, 0) = spatial::mat3::Identity();
-      g.template block<3, 3>(6 * i, 3) = -spatial::skew(r);
-      g.template block<3, 3>(6 * i + 3, 3) = spatial::mat3::Identity();
-    }
-    if (!(size > 0)) ctx.invalid_parameter("all boundary nodes are at one point");
-    const Eigen::Matrix<double, nr, 6> kg = p.k * g;
-    for (int c = 0; c < 6; ++c)
-      if (kg.col(c).norm() > 1e-8 * sk * g.col(c).norm())
-        ctx.invalid_parameter(std::string("K resists a rigid ") + (c < 3 ? "translation along " : "rotation about ") +
-                              "XYZ"[c % 3] + " of the reference node positions: the part must be free (no grounded "
-                              "DOF) and the positions and coordinate order those of the reduction");
+    detail::check_reduced_part(p.x0, p.k, p.m, ctx);
   }
 
   void evaluate(const local_input<reduced_body>& in, local_output<reduced_body>& out, element_context& ctx) const {
