@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -44,6 +45,40 @@ template <class Model>
 class driver_core {
  protected:
   explicit driver_core(Model& m) : m_(m) {}
+
+  // ---- results: public in both drivers (their `using core::...` declarations) ----
+  /// The diagnostics log (SYSPRINT.TXT role); silent by default.
+  diagnostics& log() noexcept { return log_; }
+  /// Current time.
+  double time() const noexcept { return t_; }
+  /// Displacement of a DOF at the current time. Throws invalid_model for a DOF outside the model (index out of
+  /// range, or a DOF handed out by another model) or before the first stage.
+  double u(dof d) const { return s_.u(checked(d)); }
+  /// Velocity of a DOF at the current time (throws as u()).
+  double v(dof d) const { return s_.v(checked(d)); }
+  /// Acceleration of a DOF at the current time (throws as u()).
+  double a(dof d) const { return s_.a(checked(d)); }
+  /// Global state (all DOFs).
+  const global_state& state() const noexcept { return s_; }
+  /// Sum of flows on a DOF at the last evaluation (nonzero only on prescribed DOFs: the reaction; throws as u()).
+  double residual(dof d) const {
+    const Eigen::Index i = checked(d);
+    if (i >= asm_.residual().size()) bad_dof(d);
+    return asm_.residual()(i);
+  }
+  /// Cumulative statistics (steps, rejected steps and error rejections, Newton iterations, evaluations, Jacobian
+  /// evaluations, factorisations; run_statistics).
+  const run_statistics& statistics() const noexcept { return stats_; }
+  /// The model.
+  Model& get_model() noexcept { return m_; }
+  /// The model (const).
+  const Model& get_model() const noexcept { return m_; }
+  /// The assembler (pattern, equation numbering).
+  const assembler<Model>& get_assembler() const noexcept { return asm_; }
+  /// A fingerprint of the model's topology (see pradis::model_fingerprint); checkpoints carry it.
+  std::uint64_t model_fingerprint() const { return pradis::model_fingerprint(m_); }
+
+  // ---- element-level phases --------------------------------------------------
 
   /// Calls f(instance) for every element instance of the model.
   template <class F>

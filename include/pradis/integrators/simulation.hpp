@@ -64,6 +64,9 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
       core::new_integration, core::raise, core::start_watch, core::watch_accepted;
 
  public:
+  // The results and the log (driver_core.hpp).
+  using core::a, core::get_assembler, core::get_model, core::log, core::model_fingerprint, core::residual, core::state,
+      core::statistics, core::time, core::u, core::v;
   /// The model type the simulation runs.
   using model_type = model<Es...>;
   /// A callback at output times or steps (on_output, on_step).
@@ -72,8 +75,6 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   /// Binds the simulation to a model (which must outlive it).
   explicit simulation(model_type& m, Scheme scheme = {}) : core(m), scheme_(scheme) {}
 
-  /// The diagnostics log (SYSPRINT.TXT role); silent by default.
-  diagnostics& log() noexcept { return log_; }
   /// Adds an observer called at t0 (after the zero step) and at every output time.
   void on_output(observer f) { observers_.push_back(std::move(f)); }
   /// Adds an observer called after every accepted step (before the output observers of
@@ -158,35 +159,12 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     return stats_ - before;
   }
 
-  // ---- results --------------------------------------------------------------
-  /// Current time.
-  double time() const noexcept { return t_; }
-  /// Displacement, velocity, acceleration of a DOF at the current time. Throw
-  /// invalid_model for a DOF outside the model (index out of range, or a DOF
-  /// handed out by another model) or before the first stage.
-  double u(dof d) const { return s_.u(checked(d)); }
-  double v(dof d) const { return s_.v(checked(d)); }
-  double a(dof d) const { return s_.a(checked(d)); }
-  /// Global state (all DOFs).
-  const global_state& state() const noexcept { return s_; }
-  /// Sum of flows on a DOF at the last evaluation (nonzero only on prescribed DOFs: the reaction).
-  double residual(dof d) const {
-    const Eigen::Index i = checked(d);
-    if (i >= asm_.residual().size()) bad_dof(d);
-    return asm_.residual()(i);
-  }
-  /// Cumulative statistics.
-  const run_statistics& statistics() const noexcept { return stats_; }
+  // ---- results (see also driver_core.hpp: time, u, v, a, state, residual, statistics) -----
   /// A statistic by its output-variable name: "NSTEP" (accepted steps), "NITER"
   /// (iterations of the last step), "STEP" (last step size), "NREJ" (rejected
   /// steps), "NFACT" (factorisations), "NITTOT" (all Newton iterations),
   /// "NJAC" (evaluations with the Jacobian), "NEVAL" (all model evaluations).
   double statistic(std::string_view key) const { return statistic_by_name(stats_, key); }
-  /// The model.
-  model_type& get_model() noexcept { return m_; }
-  const model_type& get_model() const noexcept { return m_; }
-  /// The assembler (pattern, equation numbering).
-  const assembler<model_type>& get_assembler() const noexcept { return asm_; }
   /// The linear solver.
   const Solver& solver() const noexcept { return newton_.linear_solver(); }
   /// Replaces the linear solver, e.g. by one with another ordering (the OPTIM key of the
@@ -214,8 +192,6 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   void restart_scheme() { s_.p = s_.a; }
 
   // ---- checkpoint and restart --------------------------------------------------
-  /// A fingerprint of the model's topology (see pradis::model_fingerprint).
-  std::uint64_t model_fingerprint() const { return pradis::model_fingerprint(m_); }
 
   /// Writes a checkpoint (format: checkpoint.hpp): time, potentials of all DOFs,
   /// the step-size state, the statistics and every element's work and state

@@ -72,6 +72,9 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
       core::new_integration, core::raise, core::start_watch, core::watch_accepted;
 
  public:
+  // The results and the log (driver_core.hpp).
+  using core::a, core::get_assembler, core::get_model, core::log, core::model_fingerprint, core::residual, core::state,
+      core::statistics, core::time, core::u, core::v;
   /// The model type the driver runs.
   using model_type = model<Es...>;
   /// A callback at output times or steps (on_output, on_step).
@@ -85,8 +88,6 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     if (auto msg = check_bdf_options(o)) throw error(error_code::invalid_option, "BDF: " + *msg);
   }
 
-  /// The diagnostics log (SYSPRINT.TXT role); silent by default.
-  diagnostics& log() noexcept { return log_; }
   /// Adds an observer called at t0 (after the zero step) and at every output time.
   void on_output(observer f) { observers_.push_back(std::move(f)); }
   /// Adds an observer called after every accepted step (before the output observers of that step).
@@ -153,24 +154,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     return stats_ - before;
   }
 
-  // ---- results --------------------------------------------------------------
-  /// Current time.
-  double time() const noexcept { return t_; }
-  /// Displacement, velocity, acceleration of a DOF at the current time; throw
-  /// invalid_model for a DOF outside the model or before the first stage.
-  double u(dof d) const { return s_.u(checked(d)); }
-  /// Velocity of a DOF (see u()).
-  double v(dof d) const { return s_.v(checked(d)); }
-  /// Acceleration of a DOF (see u()).
-  double a(dof d) const { return s_.a(checked(d)); }
-  /// Global state (all DOFs).
-  const global_state& state() const noexcept { return s_; }
-  /// Sum of flows on a DOF at the last evaluation (on prescribed DOFs: the reaction).
-  double residual(dof d) const {
-    const Eigen::Index i = checked(d);
-    if (i >= asm_.residual().size()) bad_dof(d);
-    return asm_.residual()(i);
-  }
+  // ---- results (see also driver_core.hpp: time, u, v, a, state, residual, statistics) -----
   /// The order of the next step.
   int order() const noexcept { return hist_.order(); }
   /// Cumulative statistics (steps, rejected steps and error rejections, Newton
@@ -185,12 +169,6 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   }
   /// The BDF options.
   const bdf_options& options() const noexcept { return bopt_; }
-  /// The model.
-  model_type& get_model() noexcept { return m_; }
-  /// The model (const).
-  const model_type& get_model() const noexcept { return m_; }
-  /// The assembler (pattern, equation numbering).
-  const assembler<model_type>& get_assembler() const noexcept { return asm_; }
   /// The linear solver.
   const Solver& solver() const noexcept { return solver_; }
   /// Replaces the linear solver (e.g. another ordering) for the following steps;
@@ -202,8 +180,6 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   }
 
   // ---- checkpoint and restart --------------------------------------------------
-  /// A fingerprint of the model's topology (see pradis::model_fingerprint).
-  std::uint64_t model_fingerprint() const { return pradis::model_fingerprint(m_); }
   /// Writes a checkpoint in the format of pradis::simulation (checkpoint.hpp):
   /// time, potentials (the pseudo-acceleration is the acceleration), the next
   /// step, the statistics and every element's work and state vectors. Either
