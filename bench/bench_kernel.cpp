@@ -166,7 +166,7 @@ void model_type_ratio(benchmark::State& st) {
 /// pradis::library_model, alternating which goes first, each timed by the
 /// thread's CPU clock. Both scenes are rebuilt (not timed) every ~200 steps.
 /// On small models the per-step work is a few microseconds, so whatever the
-/// kernel does per element *type* (25 types in library_model) shows here.
+/// kernel does per element *type* (library_model lists every library type) shows here.
 void model_type_ratio_step(benchmark::State& st, int steps) {
   const int n = static_cast<int>(st.range(0));
   auto listed = std::make_unique<sim_fixture<chain_model>>(n);

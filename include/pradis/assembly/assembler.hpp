@@ -135,6 +135,15 @@ class assembler<model<Es...>> {
     residual_.setZero(nd);
     abs_sum_.setZero(nd);
     partial_rows_ = false;
+    // The element types with instances, in the model's order: evaluate() visits only these, so the types a model
+    // lists but does not use (most of library_model's in a small scene) cost nothing per evaluation.
+    active_types_.clear();
+    (
+        [&] {
+          if constexpr (!InertElement<Es>)
+            if (!m.template instances<Es>().empty()) active_types_.push_back(&assembler::evaluate_active<Es>);
+        }(),
+        ...);
     built_version_ = m.topology_version();
   }
 
@@ -193,9 +202,8 @@ class assembler<model<Es...>> {
     ctx.step = info.step;
     ctx.nstep = info.nstep;
     ctx.niter = info.niter;
-    std::size_t ti = 0;
-    const auto& maps = partial_rows_ && !info.want_jacobian && info.jacobian_types ? partial_maps_ : maps_;
-    (evaluate_type<Es>(m, s, c, info, ctx, std::get<index_of<Es, Es...>()>(maps), ti++), ...);
+    const bool partial = partial_rows_ && !info.want_jacobian && info.jacobian_types;
+    for (const type_evaluation f : active_types_) (this->*f)(m, s, c, info, ctx, partial);
     m.for_each_node_kind([&]<class K>(std::type_identity<K>, const auto& nodes) {
       if constexpr (SlavingNodeKind<K>) carry_slaved<K>(m, nodes, s, c, info, ctx);
     });
@@ -305,6 +313,15 @@ class assembler<model<Es...>> {
     std::vector<scatter_entry> entries;
   };
 
+  /// evaluate_type for the element type E (one with instances) with its scatter map, the partial one
+  /// (restrict_partial_rows) if `partial`.
+  template <class E>
+  void evaluate_active(model_type& m, const global_state& s, const jacobian_coefficients& c, const call_info& info,
+                       element_context& ctx, bool partial) {
+    constexpr std::size_t i = index_of<E, Es...>();
+    evaluate_type<E>(m, s, c, info, ctx, partial ? std::get<i>(partial_maps_) : std::get<i>(maps_), i);
+  }
+  /// Evaluates the instances of E and assembles them (evaluate()).
   template <class E>
   void evaluate_type(model_type& m, const global_state& s, const jacobian_coefficients& c, const call_info& info,
                      element_context& ctx, const scatter_map<E>& map, std::size_t type_index) {
@@ -457,6 +474,10 @@ class assembler<model<Es...>> {
   linalg::sparsity_pattern pattern_;
   std::tuple<scatter_map<Es>...> maps_;
   std::tuple<scatter_map<Es>...> partial_maps_;  // maps_ on the rows of restrict_partial_rows()
+  /// evaluate_active<E> of the element types with instances (build()).
+  using type_evaluation = void (assembler::*)(model_type&, const global_state&, const jacobian_coefficients&,
+                                              const call_info&, element_context&, bool);
+  std::vector<type_evaluation> active_types_;
   bool partial_rows_ = false;
   void resize_blocks() {
     for (auto* b : {&k_values_, &c_values_, &m_values_}) b->assign(values_.size(), 0.0);
