@@ -157,9 +157,6 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   // ---- results (see also driver_core.hpp: time, u, v, a, state, residual, statistics) -----
   /// The order of the next step.
   int order() const noexcept { return hist_.order(); }
-  /// Cumulative statistics (steps, rejected steps and error rejections, Newton
-  /// iterations, evaluations, Jacobian evaluations, factorisations).
-  const run_statistics& statistics() const noexcept { return stats_; }
   /// A statistic by name: those of pradis::simulation::statistic() ("NSTEP",
   /// "NITER", "STEP", "NREJ", "NFACT", "NITTOT", "NJAC", "NEVAL") and "ORDER",
   /// the order of the next step.
