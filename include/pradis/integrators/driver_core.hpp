@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <istream>
 #include <limits>
 #include <optional>
 #include <string>
@@ -316,6 +317,24 @@ class driver_core {
     check_handover(c, d.model_fingerprint(), pradis::model_fingerprint(m_), m_.dof_count(), m_.work_pool().size(),
                    m_.old_state_pool().size(), m_.new_state_pool().size());
     return c;
+  }
+  /// A checkpoint read from `is` and checked to fit this model (read_checkpoint): what load_checkpoint() of
+  /// both drivers takes over.
+  checkpoint_data read_own_checkpoint(std::istream& is) const {
+    return read_checkpoint(is, pradis::model_fingerprint(m_), m_.dof_count(), m_.work_pool().size(),
+                           m_.old_state_pool().size(), m_.new_state_pool().size());
+  }
+  /// Takes over the fields of checked checkpoint data that both drivers keep alike (time, statistics, the
+  /// elements' work and state vectors, the DOF classes) and marks the driver started. The state itself comes
+  /// first, in the driver's restore(), since its build() reads it.
+  void take_over(checkpoint_data& c) {
+    t_ = c.time;
+    stats_ = c.stats;
+    m_.work_pool() = std::move(c.work);
+    m_.old_state_pool() = std::move(c.old_state);
+    m_.new_state_pool() = std::move(c.new_state);
+    set_dof_classes(c.dof_classes);
+    started_ = true;
   }
   /// Starts the step watch of the stage opt_ (step_watch.hpp) at the current time, and writes its
   /// note on a long stage or its warning on a step budget too small for END (unless

@@ -220,8 +220,7 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
   /// checksum, truncated, values out of range: "checkpoint damaged") is refused
   /// with io_error; the simulation is unchanged then.
   void load_checkpoint(std::istream& is) {
-    restore(read_checkpoint(is, model_fingerprint(), m_.dof_count(), m_.work_pool().size(),
-                            m_.old_state_pool().size(), m_.new_state_pool().size()));
+    restore(this->read_own_checkpoint(is));
   }
 
  private:
@@ -230,18 +229,12 @@ class simulation<model<Es...>, Scheme, Solver> : private detail::driver_core<mod
     detail::detect_sources(m_, prescribed_, log_);
     s_ = std::move(c.state);
     build();
-    t_ = c.time;
     h_nominal_ = c.h_nominal;
     h_prev_ = c.h_previous;
     a_prev_ = std::move(c.a_previous);
     p_start_.resize(s_.p.size());
     successes_ = c.successes;
-    stats_ = c.stats;
-    m_.work_pool() = std::move(c.work);
-    m_.old_state_pool() = std::move(c.old_state);
-    m_.new_state_pool() = std::move(c.new_state);
-    this->set_dof_classes(c.dof_classes);
-    started_ = true;
+    this->take_over(c);
   }
 
   static std::string num(double x) { return detail::num(x); }

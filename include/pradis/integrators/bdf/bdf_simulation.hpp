@@ -201,8 +201,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
   /// it. A checkpoint of another model or format, or a damaged one, is refused
   /// with io_error and the simulation is unchanged.
   void load_checkpoint(std::istream& is) {
-    restore(read_checkpoint(is, model_fingerprint(), m_.dof_count(), m_.work_pool().size(),
-                            m_.old_state_pool().size(), m_.new_state_pool().size()));
+    restore(this->read_own_checkpoint(is));
   }
 
  private:
@@ -212,13 +211,7 @@ class bdf_simulation<model<Es...>, Solver> : private detail::driver_core<model<E
     s_ = std::move(c.state);
     s_.p = s_.a;
     build();
-    t_ = c.time;
-    stats_ = c.stats;
-    m_.work_pool() = std::move(c.work);
-    m_.old_state_pool() = std::move(c.old_state);
-    m_.new_state_pool() = std::move(c.new_state);
-    this->set_dof_classes(c.dof_classes);
-    started_ = true;
+    this->take_over(c);
   }
 
   static std::string num(double x) { return detail::num(x); }
