@@ -29,8 +29,10 @@
 #include "testing/test_support.hpp"
 #include "zero_step_test_support.hpp"
 #include "pradis/elements/library.hpp"
+#include "pradis/integrators/algebraic_start.hpp"
 #include "pradis/integrators/bdf/bdf_simulation.hpp"
 #include "pradis/integrators/simulation.hpp"
+#include "pradis/linalg/sparse_lu.hpp"
 
 using namespace pradis;
 using namespace pradis::elements;
@@ -460,6 +462,50 @@ TEST_SUITE("integrators/algebraic start") {
       CHECK(r.u0[0] == 0.0);
       CHECK_FALSE(r.failed);
     }
+  }
+
+  TEST_CASE("algebraic_start called directly: solves a static spring, and keeps the start when its first "
+            "evaluation throws") {
+    // A spring k = 100 N/m to the ground under a constant force F = 10 N, no mass: the zero step's position is
+    // u = F / k = 0.1 m (static equilibrium). Through the drivers the guard "an element refuses the initial
+    // state" is not reached: initial_derivatives has just evaluated the same state with the same Jacobian
+    // request. Called directly with an evaluation that throws (as an element whose refusal depends on more than
+    // the state would), it restores the initial values and writes the warning.
+    using M = model<linear_spring, constant_force>;
+    M md;
+    const dof a = md.add_dof("a");
+    md.add<linear_spring>("k", {100.0}, a, md.ground());
+    md.add<constant_force>("F", {10.0}, a);
+    std::vector<char> prescribed(static_cast<std::size_t>(md.dof_count()), 0);
+    prescribed[static_cast<std::size_t>(md.ground().index)] = 1;  // the ground gets no equation
+    assembler<M> as;
+    as.build(md, prescribed);
+    linalg::sparse_lu<> solver;
+    solver.analyze(as.pattern());
+    global_state s;
+    s.resize(md.dof_count());
+    run_statistics stats;
+    diagnostics log;
+    std::ostringstream os;
+    log.to(os);
+    auto evaluate = [&](const jacobian_coefficients& c, bool jacobian) {
+      as.evaluate(md, s, c, call_info{0.0, 0.0, 0, 0, jacobian, &log});
+    };
+    evaluate(jacobian_coefficients{1, 0, 0}, true);
+    const std::vector<double> kvals(as.values().begin(), as.values().end());
+    const std::vector<char> kind(static_cast<std::size_t>(as.equations()), 0);  // algebraic: no mass, no viscosity
+    CHECK(pradis::detail::algebraic_start(md, as, solver, s, stats, log, evaluate, kind, kvals, 0.1));
+    CHECK(s.u(a.index) == doctest::Approx(0.1).epsilon(1e-14));
+    CAPTURE(os.str());
+    CHECK(os.str().empty());
+
+    s.u(a.index) = 0.0;
+    auto refuse = [&](const jacobian_coefficients&, bool) {
+      throw error(error_code::singular_situation, "refused", "K", "k");
+    };
+    CHECK(pradis::detail::algebraic_start(md, as, solver, s, stats, log, refuse, kind, kvals, 0.1));
+    CHECK(s.u(a.index) == 0.0);
+    CHECK(count_of(os.str(), ast_warning("an element refuses the initial state")) == 1);
   }
 
   TEST_CASE("the warning on an initial displacement of a DOF with neither mass nor viscosity") {
