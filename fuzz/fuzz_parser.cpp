@@ -8,17 +8,14 @@
 #include <cstdint>
 #include <string>
 
+#include "fuzz_input.hpp"
 #include "pradis/lang/parser.hpp"
 #include "pradis/lang/session.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  if (size > 64 * 1024) return 0;
-  std::string text(reinterpret_cast<const char*>(data), size);
-  // $INCLUDE resolves to an in-memory file (the fuzzer must not read the disk).
-  const pradis::lang::file_loader load = [](const std::string& path) -> std::optional<std::string> {
-    if (path == "inc.prd") return std::string("$DATA\n  Included = 1, 2\n");
-    return std::nullopt;
-  };
+  if (size > pradis_fuzz::max_input) return 0;
+  std::string text = pradis_fuzz::input_text(data, size);
+  const pradis::lang::file_loader load = pradis_fuzz::loader();
   try {
     pradis::lang::session s(pradis::lang::parse_string(std::move(text), "fuzz.prd", load));
   } catch (const pradis::lang::lang_error&) {

@@ -23,6 +23,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "fuzz_input.hpp"
 #include "pradis/lang/parser.hpp"
 #include "pradis/lang/session.hpp"
 
@@ -53,12 +54,9 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  if (size > 64 * 1024) return 0;
-  std::string text(reinterpret_cast<const char*>(data), size);
-  const pradis::lang::file_loader load = [](const std::string& path) -> std::optional<std::string> {
-    if (path == "inc.prd") return std::string("$DATA\n  Included = 1, 2\n");
-    return std::nullopt;
-  };
+  if (size > pradis_fuzz::max_input) return 0;
+  std::string text = pradis_fuzz::input_text(data, size);
+  const pradis::lang::file_loader load = pradis_fuzz::loader();
   pradis::lang::run_settings rs;
   rs.stem = "fuzz";
   rs.plot = false;

@@ -6,12 +6,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "../../fuzz/fuzz_input.hpp"  // the fuzz targets' $INCLUDE file
 #include "lang_test_support.hpp"
 
 TEST_SUITE("lang/fuzz") {
   TEST_CASE("the fuzz corpus and the fuzz regressions build or give a located error") {
     const auto root = lang_test::models_dir().parent_path().parent_path() / "fuzz";
-    const auto load = lang_test::memory_loader({{"inc.prd", "$DATA\n  Included = 1, 2\n"}});
+    const pradis::lang::file_loader load = pradis_fuzz::loader();
     int files = 0;
     for (const char* sub : {"corpus", "regressions"}) {
       if (!std::filesystem::exists(root / sub)) continue;
